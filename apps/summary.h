@@ -1,0 +1,15 @@
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+namespace lfsp::cli {
+
+// Every command that writes results also writes a small JSON summary (inputs, parameters, timings, metrics),
+// atomically, e.g. `<out>.json` beside the output.
+void WriteJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path);
+
+// The summary path for an output: OUT.h5 -> OUT.summary.json, a folder DIR -> DIR/summary.json.
+std::filesystem::path SummaryPathFor(const std::filesystem::path& output);
+
+}  // namespace lfsp::cli

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lfsp::bench {
+
+// One row of the `make bench` table. `prepare` runs once, untimed (load inputs, make synthetic data); `run` is
+// timed, several times, and returns the stage's quality figure as text (e.g. "BadPix0.07=12.3%", or "" if none).
+// Each case runs in its own child process so its peak memory (max RSS) is measured on its own.
+// `baseline` names another case whose median is printed as a ratio next to this one ("x0.35 of <baseline>").
+struct BenchCase {
+  std::string stage;
+  std::string name;
+  std::string input;   // e.g. "antinous 9x9x512x512"
+  std::string target;  // the target, e.g. "<= 0.5 s", for the table
+  std::function<void()> prepare;
+  std::function<std::string()> run;
+  std::string baseline;
+  int repetitions = 5;
+  bool needs_shared_data = false;
+};
+
+// Called at static-initialisation time by LFSP_BENCH_CASE in each bench/<stage>_bench.cc.
+int RegisterBenchCase(std::function<BenchCase()> make);
+std::vector<BenchCase> AllBenchCases();
+
+// ../shared/data, or "" if absent (cases that need it are then listed as skipped).
+std::string SharedDataDir();
+
+}  // namespace lfsp::bench
+
+#define LFSP_BENCH_CONCAT_INNER(a, b) a##b
+#define LFSP_BENCH_CONCAT(a, b) LFSP_BENCH_CONCAT_INNER(a, b)
+// Usage: LFSP_BENCH_CASE { BenchCase c; ...; return c; }
+#define LFSP_BENCH_CASE                                                                           \
+  static ::lfsp::bench::BenchCase LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)();                \
+  [[maybe_unused]] static const int LFSP_BENCH_CONCAT(lfsp_bench_reg_, __LINE__) =                \
+      ::lfsp::bench::RegisterBenchCase(&LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__));           \
+  static ::lfsp::bench::BenchCase LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)()

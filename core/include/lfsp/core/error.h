@@ -1,0 +1,21 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace lfsp {
+
+// Thrown for bad input: a file that is missing, truncated, of the wrong size or with garbage metadata, or an
+// option out of range. The message names the file (or option), the field or offset, and what was expected.
+// The CLI prints it as one line and exits with status 2. Any other exception is an internal failure (status 1).
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Builds "<path>: <problem>", the shape of every message about a file.
+std::string FileMessage(const std::string& path, const std::string& problem);
+
+[[noreturn]] void ThrowFileError(const std::string& path, const std::string& problem);
+
+}  // namespace lfsp

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "lfsp/core/light_field.h"
+
+namespace lfsp {
+
+// Everything lfsp keeps about one light field, as stored in an HDF5 bundle (.h5):
+//   LF          nv x nu x H x W x C  (float32, or uint8/uint16 scaled to [0, 1] on read)
+//   weights     nv x nu x H x W      (float32, optional)
+//   disparity   H x W                (float32, centre view, optional)
+//   labels      nv x nu x H x W      (int32, optional)
+//   attributes  transfer ("linear"/"srgb"), metadata (JSON text), and the HCI extrinsics as numbers.
+struct Bundle {
+  LightField light_field;
+  std::optional<DisparityMap> disparity;
+  std::optional<Labels> labels;
+};
+
+enum class SampleStorage { kFloat32, kUint16, kUint8 };
+
+struct BundleWriteOptions {
+  SampleStorage storage = SampleStorage::kFloat32;  // uint formats quantise: exact only for 8/16-bit data
+  int compression_level = 0;                        // gzip level 0-9; 0 keeps loading fastest
+};
+
+// Reads an lfsp bundle, or the old HCI dataset layout: lf.h5 with LF (uint8/float, nv x nu x H x W x 3) and
+// GT_DEPTH (depth per view, converted to centre-view disparity with the file's dH/focalLength/shift attributes),
+// plus a sibling labels.h5 with GT_LABELS when present.
+Bundle ReadBundle(const std::filesystem::path& path);
+
+// Writes through a temporary file renamed when complete.
+void WriteBundle(const Bundle& bundle, const std::filesystem::path& path, const BundleWriteOptions& options = {});
+
+}  // namespace lfsp

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <filesystem>
+
+#include "lfsp/core/eslf.h"
+#include "lfsp/core/hdf5_bundle.h"
+
+namespace lfsp {
+
+// Which project format a path holds, judged by what it is (folder, extension, magic).
+enum class LightFieldFormat { kViewsFolder, kHdf5Bundle, kEslf };
+
+LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // throws lfsp::Error if none
+
+// Loads any supported light-field input into a bundle. For a views folder, a ground-truth disparity PFM beside the
+// views (gt_disp_lowres.pfm, as in the HCI benchmark) is loaded as the bundle's disparity.
+Bundle LoadLightField(const std::filesystem::path& path, const EslfOptions& eslf = {});
+
+// Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, else a views
+// folder (the disparity, if any, goes beside the views as disparity.pfm).
+void SaveLightField(const Bundle& bundle, const std::filesystem::path& path, int bit_depth = 8);
+
+}  // namespace lfsp

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lfsp::testing {
+
+// ../shared/data (LFSP_SHARED_DATA set by CTest), or nothing if absent. Tests that need it call
+// LFSP_REQUIRE_SHARED_DATA() which skips with a clear message when the folder is missing.
+std::optional<std::filesystem::path> SharedDataDir();
+
+#define LFSP_REQUIRE_SHARED_DATA(var)                                                                \
+  const auto var##_optional = ::lfsp::testing::SharedDataDir();                                     \
+  if (!var##_optional) GTEST_SKIP() << "../shared/data not found (LFSP_SHARED_DATA): real-data test skipped"; \
+  const std::filesystem::path var = *var##_optional
+
+// The repository root (LFSP_SOURCE_DIR), for bundled samples.
+std::filesystem::path SourceDir();
+
+// A fresh empty folder under the system temp dir, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Runs the built `lfsp` executable (LFSP_BINARY) with the arguments; captures exit status, stdout and stderr.
+struct CommandResult {
+  int exit_status = -1;
+  std::string out;
+  std::string err;
+};
+CommandResult RunLfsp(const std::vector<std::string>& arguments);
+
+void WriteBytes(const std::filesystem::path& path, const std::string& bytes);
+std::string ReadBytes(const std::filesystem::path& path);
+
+}  // namespace lfsp::testing
