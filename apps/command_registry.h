@@ -25,6 +25,6 @@ std::vector<CommandEntry> RegisteredCommands();  // sorted by order
 #define LFSP_CLI_CONCAT_INNER(a, b) a##b
 #define LFSP_CLI_CONCAT(a, b) LFSP_CLI_CONCAT_INNER(a, b)
 // Usage at namespace scope: LFSP_REGISTER_COMMAND(70, "depth", AddDepthCommand);
-#define LFSP_REGISTER_COMMAND(order, name, add_function)                    \
+#define LFSP_REGISTER_COMMAND(order, name, add_function)                       \
   [[maybe_unused]] static const int LFSP_CLI_CONCAT(lfsp_command_, __LINE__) = \
       ::lfsp::cli::RegisterCommand({order, name, add_function})

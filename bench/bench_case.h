@@ -34,8 +34,8 @@ std::string SharedDataDir();
 #define LFSP_BENCH_CONCAT_INNER(a, b) a##b
 #define LFSP_BENCH_CONCAT(a, b) LFSP_BENCH_CONCAT_INNER(a, b)
 // Usage: LFSP_BENCH_CASE { BenchCase c; ...; return c; }
-#define LFSP_BENCH_CASE                                                                           \
-  static ::lfsp::bench::BenchCase LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)();                \
-  [[maybe_unused]] static const int LFSP_BENCH_CONCAT(lfsp_bench_reg_, __LINE__) =                \
-      ::lfsp::bench::RegisterBenchCase(&LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__));           \
+#define LFSP_BENCH_CASE                                                                 \
+  static ::lfsp::bench::BenchCase LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)();      \
+  [[maybe_unused]] static const int LFSP_BENCH_CONCAT(lfsp_bench_reg_, __LINE__) =      \
+      ::lfsp::bench::RegisterBenchCase(&LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)); \
   static ::lfsp::bench::BenchCase LFSP_BENCH_CONCAT(lfsp_bench_make_, __LINE__)()

@@ -11,8 +11,8 @@ namespace lfsp::testing {
 // LFSP_REQUIRE_SHARED_DATA() which skips with a clear message when the folder is missing.
 std::optional<std::filesystem::path> SharedDataDir();
 
-#define LFSP_REQUIRE_SHARED_DATA(var)                                                                \
-  const auto var##_optional = ::lfsp::testing::SharedDataDir();                                     \
+#define LFSP_REQUIRE_SHARED_DATA(var)                                                                         \
+  const auto var##_optional = ::lfsp::testing::SharedDataDir();                                               \
   if (!var##_optional) GTEST_SKIP() << "../shared/data not found (LFSP_SHARED_DATA): real-data test skipped"; \
   const std::filesystem::path var = *var##_optional
 

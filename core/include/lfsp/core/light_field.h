@@ -42,8 +42,7 @@ template <typename T>
 class Array4D {
  public:
   Array4D() = default;
-  explicit Array4D(const LightFieldShape& shape, T fill = T{})
-      : shape_(shape), data_(shape.TotalSamples(), fill) {}
+  explicit Array4D(const LightFieldShape& shape, T fill = T{}) : shape_(shape), data_(shape.TotalSamples(), fill) {}
 
   const LightFieldShape& shape() const { return shape_; }
   bool empty() const { return data_.empty(); }
@@ -60,8 +59,7 @@ class Array4D {
   const T& at(ViewIndex view, int y, int x, int c = 0) const { return data_[SampleOffset(view, y, x, c)]; }
 
   std::size_t ViewOffset(ViewIndex view) const {
-    return (static_cast<std::size_t>(view.v) * static_cast<std::size_t>(shape_.nu) +
-            static_cast<std::size_t>(view.u)) *
+    return (static_cast<std::size_t>(view.v) * static_cast<std::size_t>(shape_.nu) + static_cast<std::size_t>(view.u)) *
            shape_.ViewSamples();
   }
   std::size_t SampleOffset(ViewIndex view, int y, int x, int c) const {

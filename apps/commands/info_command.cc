@@ -1,0 +1,149 @@
+// `lfsp info PATH`: what a light field, disparity map or camera file holds.
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "command_registry.h"
+#include "lfsp/core/error.h"
+#include "lfsp/core/load.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/stats.h"
+
+namespace lfsp::cli {
+namespace {
+
+struct InfoOptions {
+  std::string path;
+  bool json = false;
+  int eslf_nu = 0;
+  int eslf_nv = 0;
+};
+
+nlohmann::ordered_json StatsJson(const ValueStats& stats) {
+  nlohmann::ordered_json out = {{"min", stats.min}, {"max", stats.max}, {"mean", stats.mean}};
+  if (stats.non_finite > 0) out["non_finite"] = stats.non_finite;
+  return out;
+}
+
+nlohmann::ordered_json DescribeDisparity(const DisparityMap& disparity) {
+  return {
+      {"width", disparity.width()}, {"height", disparity.height()}, {"values", StatsJson(DisparityStats(disparity))}};
+}
+
+nlohmann::ordered_json DescribeBundle(const Bundle& bundle, LightFieldFormat format) {
+  const LightField& light_field = bundle.light_field;
+  const LightFieldShape& shape = light_field.shape();
+  static const char* kFormatNames[] = {"views folder", "HDF5 bundle", "ESLF image"};
+  nlohmann::ordered_json out;
+  out["format"] = kFormatNames[static_cast<int>(format)];
+  out["views"] = {{"nu", shape.nu}, {"nv", shape.nv}};
+  out["view_size"] = {{"width", shape.width}, {"height", shape.height}, {"channels", shape.channels}};
+  out["centre_view"] = {{"u", shape.Centre().u}, {"v", shape.Centre().v}};
+  out["transfer"] = ToString(light_field.transfer);
+  static const char* kChannelNames[] = {"R", "G", "B"};
+  for (int c = 0; c < shape.channels; ++c)
+    out["value_range"][shape.channels == 3 ? kChannelNames[c] : std::to_string(c)] =
+        StatsJson(ChannelStats(light_field, c));
+  if (light_field.HasWeights())
+    out["weights"] = StatsJson(ComputeStats(light_field.weights().data(), light_field.weights().size()));
+  if (const auto range = DisparityRangeFromMetadata(light_field.metadata))
+    out["disparity_range"] = {{"min", range->min}, {"max", range->max}, {"source", "metadata"}};
+  if (bundle.disparity) out["disparity"] = DescribeDisparity(*bundle.disparity);
+  if (bundle.labels) {
+    std::set<int> distinct(bundle.labels->data(), bundle.labels->data() + bundle.labels->size());
+    distinct.erase(Labels::kUnlabelled);
+    out["labels"] = {{"distinct", distinct.size()}};
+  }
+  if (!light_field.metadata.empty()) out["metadata"] = light_field.metadata;
+  return out;
+}
+
+void PrintReadable(const nlohmann::ordered_json& info, const std::string& path) {
+  std::printf("%s\n", path.c_str());
+  if (info.contains("views")) {
+    std::printf("  format       %s\n", info["format"].get<std::string>().c_str());
+    std::printf("  views        %d x %d (nu x nv), centre (u=%d, v=%d)\n", info["views"]["nu"].get<int>(),
+                info["views"]["nv"].get<int>(), info["centre_view"]["u"].get<int>(),
+                info["centre_view"]["v"].get<int>());
+    std::printf("  view size    %d x %d, %d channels\n", info["view_size"]["width"].get<int>(),
+                info["view_size"]["height"].get<int>(), info["view_size"]["channels"].get<int>());
+    std::printf("  transfer     %s\n", info["transfer"].get<std::string>().c_str());
+    for (const auto& [channel, stats] : info["value_range"].items())
+      std::printf("  channel %-4s min %.4f  max %.4f  mean %.4f\n", channel.c_str(), stats["min"].get<double>(),
+                  stats["max"].get<double>(), stats["mean"].get<double>());
+    if (info.contains("weights"))
+      std::printf("  weights      min %.4f  max %.4f\n", info["weights"]["min"].get<double>(),
+                  info["weights"]["max"].get<double>());
+    if (info.contains("disparity_range"))
+      std::printf("  disparity range (metadata) %.3f .. %.3f px/view\n", info["disparity_range"]["min"].get<double>(),
+                  info["disparity_range"]["max"].get<double>());
+    if (info.contains("labels"))
+      std::printf("  labels       %zu distinct\n", info["labels"]["distinct"].get<std::size_t>());
+  }
+  if (info.contains("disparity")) {
+    const auto& disparity = info["disparity"];
+    std::printf("  disparity map %d x %d, min %.4f  max %.4f  mean %.4f\n", disparity["width"].get<int>(),
+                disparity["height"].get<int>(), disparity["values"]["min"].get<double>(),
+                disparity["values"]["max"].get<double>(), disparity["values"]["mean"].get<double>());
+  }
+  if (info.contains("metadata")) {
+    std::printf("  metadata\n");
+    for (const auto& [section, values] : info["metadata"].items()) {
+      if (!values.is_object()) continue;
+      std::printf("    [%s]\n", section.c_str());
+      for (const auto& [key, value] : values.items()) std::printf("      %s = %s\n", key.c_str(), value.dump().c_str());
+    }
+  }
+}
+
+bool IsPfm(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return extension == ".pfm";
+}
+
+void RunInfo(const InfoOptions& options) {
+  const std::filesystem::path path(options.path);
+  nlohmann::ordered_json info;
+  if (IsPfm(path)) {
+    info["format"] = "PFM disparity map";
+    info["disparity"] = DescribeDisparity(ReadPfm(path));
+  } else {
+    EslfOptions eslf;
+    if (options.eslf_nu > 0) eslf.nu = options.eslf_nu;
+    if (options.eslf_nv > 0) eslf.nv = options.eslf_nv;
+    const LightFieldFormat format = DetectLightFieldFormat(path);
+    info = DescribeBundle(LoadLightField(path, eslf), format);
+  }
+  if (options.json) {
+    std::cout << info.dump(2) << std::endl;
+  } else {
+    PrintReadable(info, options.path);
+  }
+}
+
+void AddInfoCommand(CLI::App& app) {
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* command = app.add_subcommand(
+      "info",
+      "Print what a file holds: light field (views folder, .h5 bundle, ESLF .png) dimensions, value ranges, "
+      "metadata and disparity range; or a disparity .pfm");
+  command->add_option("path", options->path, "Views folder, .h5 bundle, ESLF image or .pfm")->required();
+  command->add_flag("--json", options->json, "Print JSON instead of text (default: text)");
+  command->add_option("--eslf-nu", options->eslf_nu, "Angular columns of an ESLF without lfsp attributes (e.g. 14)");
+  command->add_option("--eslf-nv", options->eslf_nv, "Angular rows of an ESLF without lfsp attributes (e.g. 14)");
+  command->callback([options] { RunInfo(*options); });
+}
+
+}  // namespace
+
+LFSP_REGISTER_COMMAND(10, "info", AddInfoCommand);
+
+}  // namespace lfsp::cli

@@ -1,0 +1,29 @@
+#include "summary.h"
+
+#include <fstream>
+
+#include "lfsp/core/atomic_file.h"
+#include "lfsp/core/error.h"
+
+namespace lfsp::cli {
+
+void WriteJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path) {
+  AtomicOutput output(path);
+  {
+    std::ofstream file(output.temporary());
+    if (!file) ThrowFileError(path.string(), "cannot create");
+    file << summary.dump(2) << "\n";
+    if (!file.flush()) ThrowFileError(path.string(), "write failed");
+  }
+  output.Commit();
+}
+
+std::filesystem::path SummaryPathFor(const std::filesystem::path& output) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(output, ec) || !output.has_extension()) return output / "summary.json";
+  std::filesystem::path path = output;
+  path.replace_extension(".summary.json");
+  return path;
+}
+
+}  // namespace lfsp::cli

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <opencv2/core/mat.hpp>
+#include <string>
+
+namespace lfsp {
+
+// Every image file goes through OpenImageIO (PNG, TIFF, EXR, JPEG, ...).
+
+struct ImageFile {
+  cv::Mat pixels;                           // CV_32FC(n): integer files scaled to [0, 1], float files as stored
+  int bit_depth = 8;                        // bits per sample on disk (8, 16, 32 for float)
+  std::map<std::string, std::string> text;  // string attributes (PNG text chunks, e.g. "lfsp:nu")
+};
+
+ImageFile ReadImage(const std::filesystem::path& path);
+
+// Reads an image straight into `destination` (pre-allocated CV_32FC(n), continuous), without an intermediate copy.
+// The file must have exactly destination's width and height and at least n channels (extra channels, such as
+// alpha, are dropped). Returns the file's bits per sample.
+int ReadImageInto(const std::filesystem::path& path, cv::Mat& destination);
+
+// Writes `image` (CV_32F in [0, 1], quantised with rounding; or CV_8U / CV_16U as is; 1, 3 or 4 channels) with
+// `bit_depth` bits per sample (8 or 16; float formats such as EXR keep float), through a temporary file.
+void WriteImage(const cv::Mat& image, const std::filesystem::path& path, int bit_depth = 8,
+                const std::map<std::string, std::string>& text = {});
+
+}  // namespace lfsp

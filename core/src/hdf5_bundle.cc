@@ -1,0 +1,308 @@
+#include "lfsp/core/hdf5_bundle.h"
+
+#include <H5Cpp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "lfsp/core/atomic_file.h"
+#include "lfsp/core/error.h"
+
+namespace lfsp {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+std::vector<hsize_t> Dimensions(const H5::DataSet& dataset) {
+  const H5::DataSpace space = dataset.getSpace();
+  std::vector<hsize_t> dims(static_cast<std::size_t>(space.getSimpleExtentNdims()));
+  space.getSimpleExtentDims(dims.data());
+  return dims;
+}
+
+std::string DimsText(const std::vector<hsize_t>& dims) {
+  std::string text;
+  for (std::size_t i = 0; i < dims.size(); ++i) text += (i ? "x" : "") + std::to_string(dims[i]);
+  return text;
+}
+
+// Reads a numeric dataset of any integer or float type into floats: unsigned 8/16-bit samples are scaled to [0, 1]
+// (the HCI files store uint8 views), floats are taken as they are.
+void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, std::size_t count, const std::string& where) {
+  const H5T_class_t type_class = dataset.getTypeClass();
+  if (type_class == H5T_FLOAT) {
+    dataset.read(destination, H5::PredType::NATIVE_FLOAT);
+    return;
+  }
+  if (type_class != H5T_INTEGER) ThrowFileError(where, "samples are neither integer nor float");
+  const std::size_t size = dataset.getDataType().getSize();
+  if (size == 1) {
+    std::vector<std::uint8_t> raw(count);
+    dataset.read(raw.data(), H5::PredType::NATIVE_UINT8);
+    for (std::size_t i = 0; i < count; ++i) destination[i] = static_cast<float>(raw[i]) / 255.0f;
+  } else if (size == 2) {
+    std::vector<std::uint16_t> raw(count);
+    dataset.read(raw.data(), H5::PredType::NATIVE_UINT16);
+    for (std::size_t i = 0; i < count; ++i) destination[i] = static_cast<float>(raw[i]) / 65535.0f;
+  } else {
+    ThrowFileError(where, "unsupported integer sample size of " + std::to_string(size) + " bytes");
+  }
+}
+
+std::string ReadStringAttribute(const H5::H5Object& object, const char* name) {
+  if (!object.attrExists(name)) return "";
+  const H5::Attribute attribute = object.openAttribute(name);
+  std::string value;
+  attribute.read(attribute.getStrType(), value);
+  return value;
+}
+
+std::optional<double> ReadNumberAttribute(const H5::H5Object& object, const char* name) {
+  if (!object.attrExists(name)) return std::nullopt;
+  const H5::Attribute attribute = object.openAttribute(name);
+  if (attribute.getTypeClass() != H5T_FLOAT && attribute.getTypeClass() != H5T_INTEGER) return std::nullopt;
+  if (attribute.getSpace().getSimpleExtentNpoints() != 1) return std::nullopt;
+  double value = 0.0;
+  attribute.read(H5::PredType::NATIVE_DOUBLE, &value);
+  return value;
+}
+
+void WriteStringAttribute(H5::H5Object& object, const char* name, const std::string& value) {
+  const H5::StrType type(H5::PredType::C_S1, std::max<std::size_t>(value.size(), 1));
+  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+  attribute.write(type, value);
+}
+
+LightField ReadLightFieldDataset(const H5::H5File& file, const std::string& name) {
+  const H5::DataSet dataset = file.openDataSet("LF");
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  if (dims.size() != 5 || dims[4] < 1 || dims[4] > 4)
+    ThrowFileError(name, "dataset LF has shape " + DimsText(dims) + ", expected nv x nu x H x W x C (C = 1..4)");
+  for (hsize_t dim : dims)
+    if (dim == 0 || dim > 65536) ThrowFileError(name, "dataset LF has an implausible shape " + DimsText(dims));
+  LightFieldShape shape;
+  shape.nv = static_cast<int>(dims[0]);
+  shape.nu = static_cast<int>(dims[1]);
+  shape.height = static_cast<int>(dims[2]);
+  shape.width = static_cast<int>(dims[3]);
+  shape.channels = static_cast<int>(std::min<hsize_t>(dims[4], 3));
+  LightField light_field(shape);
+  if (static_cast<int>(dims[4]) == shape.channels) {
+    ReadSamplesAsFloat(dataset, light_field.data(), light_field.size(), name + ": LF");
+  } else {  // RGBA: drop the alpha channel
+    std::vector<float> all(shape.TotalSamples() / 3 * 4);
+    ReadSamplesAsFloat(dataset, all.data(), all.size(), name + ": LF");
+    for (std::size_t i = 0, n = all.size() / 4; i < n; ++i) std::copy_n(&all[i * 4], 3, light_field.data() + i * 3);
+  }
+  return light_field;
+}
+
+void CheckSpatialMatch(const std::vector<hsize_t>& dims, const LightFieldShape& shape, const std::string& where) {
+  if (dims.size() < 2 || dims[dims.size() - 2] != static_cast<hsize_t>(shape.height) ||
+      dims[dims.size() - 1] != static_cast<hsize_t>(shape.width))
+    ThrowFileError(where,
+                   "has shape " + DimsText(dims) + ", which does not match the light field (" + ToString(shape) + ")");
+}
+
+DisparityMap ReadDisparityDataset(const H5::H5File& file, const LightFieldShape& shape, const std::string& name) {
+  const H5::DataSet dataset = file.openDataSet("disparity");
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  if (dims.size() != 2) ThrowFileError(name, "dataset disparity has shape " + DimsText(dims) + ", expected H x W");
+  CheckSpatialMatch(dims, shape, name + ": dataset disparity");
+  DisparityMap disparity(shape.width, shape.height);
+  dataset.read(disparity.data(), H5::PredType::NATIVE_FLOAT);
+  return disparity;
+}
+
+// Labels as nv x nu x H x W, or H x W for the centre view only (other views then stay unlabelled).
+Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const LightFieldShape& shape,
+                         const std::string& name) {
+  const H5::DataSet dataset = file.openDataSet(dataset_name);
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  const std::string where = name + ": dataset " + dataset_name;
+  CheckSpatialMatch(dims, shape, where);
+  Labels labels(shape);
+  if (dims.size() == 4) {
+    if (dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu))
+      ThrowFileError(where, "has " + DimsText(dims) + " but the light field has " + ToString(shape));
+    dataset.read(labels.data(), H5::PredType::NATIVE_INT32);
+  } else if (dims.size() == 2) {
+    dataset.read(labels.ViewData(shape.Centre()), H5::PredType::NATIVE_INT32);
+  } else {
+    ThrowFileError(where, "has shape " + DimsText(dims) + ", expected nv x nu x H x W or H x W");
+  }
+  return labels;
+}
+
+// Old HCI dataset (Wanner et al. 2013): GT_DEPTH holds depth per view; disparity = dH * focalLength / depth - shift.
+std::optional<DisparityMap> ReadOldHciDisparity(const H5::H5File& file, const LightFieldShape& shape,
+                                                const std::string& name) {
+  if (!file.nameExists("GT_DEPTH")) return std::nullopt;
+  const auto dh = ReadNumberAttribute(file, "dH");
+  const auto focal = ReadNumberAttribute(file, "focalLength");
+  const auto shift = ReadNumberAttribute(file, "shift");
+  if (!dh || !focal || !shift)
+    ThrowFileError(name, "GT_DEPTH present but the attributes dH, focalLength, shift needed to convert it are not");
+  const H5::DataSet dataset = file.openDataSet("GT_DEPTH");
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  CheckSpatialMatch(dims, shape, name + ": dataset GT_DEPTH");
+  std::vector<float> depth(dims.size() == 4 ? shape.Views() * shape.ViewPixels() : shape.ViewPixels());
+  if (dims.size() != 4 && dims.size() != 2) ThrowFileError(name, "GT_DEPTH has shape " + DimsText(dims));
+  dataset.read(depth.data(), H5::PredType::NATIVE_FLOAT);
+  const std::size_t centre_offset =
+      dims.size() == 4 ? static_cast<std::size_t>(CameraNumber(shape.Centre(), shape.nu)) * shape.ViewPixels() : 0;
+  DisparityMap disparity(shape.width, shape.height);
+  for (std::size_t i = 0; i < shape.ViewPixels(); ++i) {
+    const double z = depth[centre_offset + i];
+    disparity.data()[i] = static_cast<float>(z > 0.0 ? *dh * *focal / z - *shift : NAN);
+  }
+  return disparity;
+}
+
+template <typename T>
+std::vector<T> Quantise(const float* values, std::size_t count, float scale) {
+  std::vector<T> out(count);
+#pragma omp parallel for
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = static_cast<T>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * scale));
+  return out;
+}
+
+H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compression_level) {
+  H5::DSetCreatPropList properties;
+  if (compression_level > 0) {
+    std::vector<hsize_t> chunk = dims;
+    chunk[0] = 1;
+    chunk[1] = 1;
+    properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
+    properties.setDeflate(std::min(compression_level, 9));
+  }
+  return properties;
+}
+
+}  // namespace
+
+Bundle ReadBundle(const fs::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
+  H5::Exception::dontPrint();
+  if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
+  try {
+    const H5::H5File file(name, H5F_ACC_RDONLY);
+    if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
+    Bundle bundle;
+    bundle.light_field = ReadLightFieldDataset(file, name);
+    LightField& light_field = bundle.light_field;
+    const LightFieldShape& shape = light_field.shape();
+
+    const std::string transfer = ReadStringAttribute(file, "transfer");
+    light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromString(transfer);
+    const std::string metadata = ReadStringAttribute(file, "metadata");
+    if (!metadata.empty()) {
+      light_field.metadata = Metadata::parse(metadata, nullptr, /*allow_exceptions=*/false);
+      if (light_field.metadata.is_discarded()) ThrowFileError(name, "attribute 'metadata' is not valid JSON");
+    }
+
+    if (file.nameExists("weights")) {
+      const H5::DataSet dataset = file.openDataSet("weights");
+      const std::vector<hsize_t> dims = Dimensions(dataset);
+      if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu))
+        ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
+      CheckSpatialMatch(dims, shape, name + ": dataset weights");
+      light_field.EnableWeights();
+      dataset.read(light_field.weights().data(), H5::PredType::NATIVE_FLOAT);
+    }
+    if (file.nameExists("disparity")) {
+      bundle.disparity = ReadDisparityDataset(file, shape, name);
+    } else {
+      bundle.disparity = ReadOldHciDisparity(file, shape, name);
+    }
+    if (file.nameExists("labels")) bundle.labels = ReadLabelsDataset(file, "labels", shape, name);
+
+    // Old HCI layout: ground-truth labels live in a sibling labels.h5.
+    const fs::path sibling_labels = path.parent_path() / "labels.h5";
+    if (!bundle.labels && fs::exists(sibling_labels, ec) && sibling_labels.filename() != path.filename()) {
+      const H5::H5File labels_file(sibling_labels.string(), H5F_ACC_RDONLY);
+      if (labels_file.nameExists("GT_LABELS"))
+        bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", shape, sibling_labels.string());
+    }
+    return bundle;
+  } catch (const H5::Exception& error) {
+    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+  }
+}
+
+void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOptions& options) {
+  const std::string name = path.string();
+  const LightField& light_field = bundle.light_field;
+  const LightFieldShape& shape = light_field.shape();
+  if (light_field.empty()) ThrowFileError(name, "refusing to write an empty light field");
+  H5::Exception::dontPrint();
+  AtomicOutput output(path);
+  try {
+    H5::H5File file(output.temporary().string(), H5F_ACC_TRUNC);
+    const std::vector<hsize_t> lf_dims = {static_cast<hsize_t>(shape.nv), static_cast<hsize_t>(shape.nu),
+                                          static_cast<hsize_t>(shape.height), static_cast<hsize_t>(shape.width),
+                                          static_cast<hsize_t>(shape.channels)};
+    const H5::DataSpace lf_space(5, lf_dims.data());
+    const H5::DSetCreatPropList lf_properties = ChunkedPerView(lf_dims, options.compression_level);
+    switch (options.storage) {
+      case SampleStorage::kFloat32: {
+        H5::DataSet dataset = file.createDataSet("LF", H5::PredType::IEEE_F32LE, lf_space, lf_properties);
+        dataset.write(light_field.data(), H5::PredType::NATIVE_FLOAT);
+        break;
+      }
+      case SampleStorage::kUint16: {
+        H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U16LE, lf_space, lf_properties);
+        dataset.write(Quantise<std::uint16_t>(light_field.data(), light_field.size(), 65535.0f).data(),
+                      H5::PredType::NATIVE_UINT16);
+        break;
+      }
+      case SampleStorage::kUint8: {
+        H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U8LE, lf_space, lf_properties);
+        dataset.write(Quantise<std::uint8_t>(light_field.data(), light_field.size(), 255.0f).data(),
+                      H5::PredType::NATIVE_UINT8);
+        break;
+      }
+    }
+    WriteStringAttribute(file, "transfer", ToString(light_field.transfer));
+    WriteStringAttribute(file, "metadata", light_field.metadata.dump());
+    H5::Attribute version =
+        file.createAttribute("lfsp_format_version", H5::PredType::STD_I32LE, H5::DataSpace(H5S_SCALAR));
+    version.write(H5::PredType::NATIVE_INT, &kFormatVersion);
+
+    const std::vector<hsize_t> ray_dims(lf_dims.begin(), lf_dims.begin() + 4);
+    if (light_field.HasWeights()) {
+      H5::DataSet dataset = file.createDataSet("weights", H5::PredType::IEEE_F32LE, H5::DataSpace(4, ray_dims.data()),
+                                               ChunkedPerView(ray_dims, options.compression_level));
+      dataset.write(light_field.weights().data(), H5::PredType::NATIVE_FLOAT);
+    }
+    if (bundle.disparity) {
+      const DisparityMap& disparity = *bundle.disparity;
+      if (disparity.width() != shape.width || disparity.height() != shape.height)
+        ThrowFileError(name, "disparity map size does not match the light field");
+      const hsize_t dims[2] = {static_cast<hsize_t>(disparity.height()), static_cast<hsize_t>(disparity.width())};
+      H5::DataSet dataset = file.createDataSet("disparity", H5::PredType::IEEE_F32LE, H5::DataSpace(2, dims));
+      dataset.write(disparity.data(), H5::PredType::NATIVE_FLOAT);
+    }
+    if (bundle.labels) {
+      if (!(bundle.labels->shape().nu == shape.nu && bundle.labels->shape().nv == shape.nv &&
+            bundle.labels->shape().width == shape.width && bundle.labels->shape().height == shape.height))
+        ThrowFileError(name, "labels shape does not match the light field");
+      H5::DataSet dataset = file.createDataSet("labels", H5::PredType::STD_I32LE, H5::DataSpace(4, ray_dims.data()),
+                                               ChunkedPerView(ray_dims, options.compression_level));
+      dataset.write(bundle.labels->data(), H5::PredType::NATIVE_INT32);
+    }
+    file.close();
+  } catch (const H5::Exception& error) {
+    ThrowFileError(name, "HDF5 write failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+  }
+  output.Commit();
+}
+
+}  // namespace lfsp

@@ -1,0 +1,62 @@
+#include "lfsp/core/light_field.h"
+
+#include <opencv2/core.hpp>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp {
+
+std::string ToString(Transfer transfer) { return transfer == Transfer::kLinear ? "linear" : "srgb"; }
+
+Transfer TransferFromString(const std::string& name) {
+  if (name == "linear") return Transfer::kLinear;
+  if (name == "srgb") return Transfer::kSrgb;
+  throw Error("unknown transfer function '" + name + "' (expected 'linear' or 'srgb')");
+}
+
+std::string ToString(const LightFieldShape& shape) {
+  return std::to_string(shape.nv) + "x" + std::to_string(shape.nu) + " views of " + std::to_string(shape.height) + "x" +
+         std::to_string(shape.width) + "x" + std::to_string(shape.channels);
+}
+
+namespace {
+// cv::Mat needs a non-const pointer even for read-only use; the const overloads document that contract.
+template <typename T>
+cv::Mat WrapView(const LightFieldShape& shape, int depth, int channels, const T* data) {
+  return cv::Mat(shape.height, shape.width, CV_MAKETYPE(depth, channels), const_cast<T*>(data));
+}
+}  // namespace
+
+cv::Mat LightField::View(ViewIndex view) { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
+cv::Mat LightField::View(ViewIndex view) const { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
+
+void LightField::EnableWeights(float fill) {
+  LightFieldShape weight_shape = shape_;
+  weight_shape.channels = 1;
+  weights_ = Array4D<float>(weight_shape, fill);
+}
+
+cv::Mat LightField::WeightView(ViewIndex view) {
+  return WrapView(weights_.shape(), CV_32F, 1, weights_.ViewData(view));
+}
+
+Labels::Labels(LightFieldShape shape, std::int32_t fill)
+    : Array4D<std::int32_t>(
+          [&] {
+            shape.channels = 1;
+            return shape;
+          }(),
+          fill) {}
+
+cv::Mat Labels::View(ViewIndex view) { return WrapView(shape_, CV_32S, 1, ViewData(view)); }
+cv::Mat Labels::View(ViewIndex view) const { return WrapView(shape_, CV_32S, 1, ViewData(view)); }
+
+DisparityMap::DisparityMap(int width, int height, float fill)
+    : width_(width),
+      height_(height),
+      values_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill) {}
+
+cv::Mat DisparityMap::Mat() { return cv::Mat(height_, width_, CV_32FC1, values_.data()); }
+cv::Mat DisparityMap::Mat() const { return cv::Mat(height_, width_, CV_32FC1, const_cast<float*>(values_.data())); }
+
+}  // namespace lfsp
