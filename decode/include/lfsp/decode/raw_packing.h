@@ -36,8 +36,8 @@ enum class RawPacking { kBits12BigEndian, kBits10Illum, kBits16LittleEndian };
 // and `lfsp info`.
 std::string_view ToString(RawPacking packing);
 
-int BitsPerPixel(RawPacking packing);            // 12, 10, 16
-std::uint16_t MaxPixelValue(RawPacking packing); // 4095, 1023, 65535
+int BitsPerPixel(RawPacking packing);             // 12, 10, 16
+std::uint16_t MaxPixelValue(RawPacking packing);  // 4095, 1023, 65535
 
 // Exact byte count of `pixel_count` packed pixels, including the padded
 // trailing group.
@@ -46,19 +46,15 @@ std::size_t PackedByteCount(RawPacking packing, std::size_t pixel_count);
 // Unpacks `packed` into `pixels` (pixels.size() pixels). Throws lfsp::Error
 // naming `source` and the expected and actual byte counts unless packed.size()
 // == PackedByteCount(packing, pixels.size()). Parallel (OpenMP).
-void UnpackRaw(RawPacking packing, std::span<const std::uint8_t> packed,
-               std::span<std::uint16_t> pixels, const std::string &source);
-std::vector<std::uint16_t> UnpackRaw(RawPacking packing,
-                                     std::span<const std::uint8_t> packed,
-                                     std::size_t pixel_count,
-                                     const std::string &source);
+void UnpackRaw(RawPacking packing, std::span<const std::uint8_t> packed, std::span<std::uint16_t> pixels,
+               const std::string& source);
+std::vector<std::uint16_t> UnpackRaw(RawPacking packing, std::span<const std::uint8_t> packed, std::size_t pixel_count,
+                                     const std::string& source);
 
 // Packs `pixels` (values must fit in BitsPerPixel bits, otherwise lfsp::Error
 // naming `source` and the first offending pixel index) into exactly
 // PackedByteCount(packing, pixels.size()) bytes.
-std::vector<std::uint8_t> PackRaw(RawPacking packing,
-                                  std::span<const std::uint16_t> pixels,
-                                  const std::string &source);
+std::vector<std::uint8_t> PackRaw(RawPacking packing, std::span<const std::uint16_t> pixels, const std::string& source);
 
 // A raw sensor image: width x height pixels, row-major from the top-left,
 // values as stored (not normalised).
@@ -67,21 +63,16 @@ struct RawImage {
   int height = 0;
   std::vector<std::uint16_t> pixels;
 
-  std::size_t PixelCount() const {
-    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  }
+  std::size_t PixelCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
   std::uint16_t at(int y, int x) const {
-    return pixels[static_cast<std::size_t>(y) *
-                      static_cast<std::size_t>(width) +
-                  static_cast<std::size_t>(x)];
+    return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
   }
 };
 
 // Unpacks a width x height image; throws lfsp::Error (naming `source`) on
 // non-positive sizes or a buffer whose size is not PackedByteCount(packing,
 // width * height).
-RawImage UnpackRawImage(RawPacking packing,
-                        std::span<const std::uint8_t> packed, int width,
-                        int height, const std::string &source);
+RawImage UnpackRawImage(RawPacking packing, std::span<const std::uint8_t> packed, int width, int height,
+                        const std::string& source);
 
-} // namespace lfsp::decode
+}  // namespace lfsp::decode

@@ -1,0 +1,90 @@
+#include "json_path.h"
+
+#include <charconv>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::decode {
+namespace {
+
+// Steps into `node` by one path component "name" or "name[3]"; nullptr if
+// absent.
+const nlohmann::json* Step(const nlohmann::json* node, std::string_view component) {
+  std::string_view name = component;
+  std::optional<std::size_t> index;
+  const std::size_t bracket = component.find('[');
+  if (bracket != std::string_view::npos && component.back() == ']') {
+    name = component.substr(0, bracket);
+    const std::string_view digits = component.substr(bracket + 1, component.size() - bracket - 2);
+    std::size_t value = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (error != std::errc() || end != digits.data() + digits.size()) return nullptr;
+    index = value;
+  }
+  if (!name.empty()) {
+    if (!node->is_object()) return nullptr;
+    const auto it = node->find(std::string(name));
+    if (it == node->end()) return nullptr;
+    node = &*it;
+  }
+  if (index) {
+    if (!node->is_array() || *index >= node->size()) return nullptr;
+    node = &(*node)[*index];
+  }
+  return node;
+}
+
+[[noreturn]] void WrongType(const std::string& source, std::string_view path, const char* expected) {
+  throw Error(source + ": metadata field " + std::string(path) + " is not " + expected);
+}
+
+}  // namespace
+
+const nlohmann::json* FindPath(const nlohmann::json& root, std::string_view path) {
+  const nlohmann::json* node = &root;
+  while (node != nullptr && !path.empty()) {
+    const std::size_t dot = path.find('.');
+    node = Step(node, path.substr(0, dot));
+    path = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
+  }
+  return node;
+}
+
+std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+  const nlohmann::json* value = FindPath(root, path);
+  if (value == nullptr || value->is_null()) return std::nullopt;
+  if (!value->is_number()) WrongType(source, path, "a number");
+  return value->get<double>();
+}
+
+std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+  const nlohmann::json* value = FindPath(root, path);
+  if (value == nullptr || value->is_null()) return std::nullopt;
+  if (!value->is_string()) WrongType(source, path, "a string");
+  return value->get<std::string>();
+}
+
+std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+  const nlohmann::json* value = FindPath(root, path);
+  if (value == nullptr || value->is_null()) return std::nullopt;
+  // Some Lytro files write flags as strings ("false"); accept both.
+  if (value->is_boolean()) return value->get<bool>();
+  if (value->is_string() && (*value == "true" || *value == "false")) return *value == "true";
+  WrongType(source, path, "a boolean");
+}
+
+double RequireNumber(const nlohmann::json& root, std::string_view path, const std::string& source,
+                     std::string_view prefix) {
+  const std::optional<double> value = NumberAt(root, path, source);
+  if (!value) throw Error(source + ": metadata field " + std::string(prefix) + std::string(path) + " is missing");
+  return *value;
+}
+
+std::string RequireString(const nlohmann::json& root, std::string_view path, const std::string& source,
+                          std::string_view prefix) {
+  const std::optional<std::string> value = StringAt(root, path, source);
+  if (!value) throw Error(source + ": metadata field " + std::string(prefix) + std::string(path) + " is missing");
+  return *value;
+}
+
+}  // namespace lfsp::decode
