@@ -9,22 +9,22 @@
 namespace lfsp::simulate {
 
 struct RenderOptions {
-  int nu = 9;                   // views per row
-  int nv = 9;                   // views per column
-  int width = 128;              // pixels per view
+  int nu = 9;       // views per row
+  int nv = 9;       // views per column
+  int width = 128;  // pixels per view
   int height = 128;
-  int supersampling = 3;        // samples per pixel along each axis (3 -> 9 stratified samples); 1 = no anti-aliasing
-  float disparity_scale = 1.0f; // multiplies every scene disparity (scene disparities are pixels per view step)
+  int supersampling = 3;         // samples per pixel along each axis (3 -> 9 stratified samples); 1 = no anti-aliasing
+  float disparity_scale = 1.0f;  // multiplies every scene disparity (scene disparities are pixels per view step)
   Transfer transfer = Transfer::kSrgb;  // kSrgb: texture colours as given; kLinear: decoded to linear radiance
   bool per_view_disparity = true;       // fill RenderedLightField::view_disparity
 };
 
 // An ideal light field with ground truth known by construction.
 struct RenderedLightField {
-  LightField light_field;                     // nv x nu views, RGB in [0, 1]
-  Labels labels;                              // object label of the ray through each pixel centre (nearest wins)
-  std::vector<DisparityMap> view_disparity;   // per view (row-major cam = v * nu + u), of the pixel-centre ray
-  DisparityMap disparity;                     // centre view (same as view_disparity[centre])
+  LightField light_field;                    // nv x nu views, RGB in [0, 1]
+  Labels labels;                             // object label of the ray through each pixel centre (nearest wins)
+  std::vector<DisparityMap> view_disparity;  // per view (row-major cam = v * nu + u), of the pixel-centre ray
+  DisparityMap disparity;                    // centre view (same as view_disparity[centre])
 };
 
 // Renders every view by tracing, for each (anti-aliasing sub-)pixel, the ray of view (u, v) through the scene.
@@ -39,7 +39,7 @@ Bundle ToBundle(const RenderedLightField& rendered, const Scene& scene);
 struct RayHit {
   int object = -1;  // index into Scene::objects, -1 = nothing
   float disparity = 0.0f;
-  float x = 0.0f;   // centre-view position of the hit, pixels
+  float x = 0.0f;  // centre-view position of the hit, pixels
   float y = 0.0f;
 };
 

@@ -24,7 +24,7 @@ struct Shape {
   Kind kind = Kind::kEverywhere;
   std::vector<std::array<float, 2>> points;  // kRect: two corners; kPolygon: vertices (convex or not), normalised
   std::array<float, 2> centre{0.5f, 0.5f};   // kDisc
-  float radius = 0.1f;                        // kDisc, fraction of min(width, height)
+  float radius = 0.1f;                       // kDisc, fraction of min(width, height)
 };
 
 // A mirror-like highlight whose position moves with the view, so the surface is not Lambertian (reproduces the

@@ -18,12 +18,12 @@ using Rgb = std::array<float, 3>;
 struct Texture {
   enum class Kind { kConstant, kChecker, kNoise, kStripes, kGradient, kImage };
   Kind kind = Kind::kConstant;
-  Rgb colour_a{0.5f, 0.5f, 0.5f};  // constant colour, or the first of two colours
-  Rgb colour_b{0.5f, 0.5f, 0.5f};  // second colour (checker, noise, stripes, gradient)
-  float period = 0.1f;             // checker cell / stripe period / noise feature size, in normalised units
-  float angle = 0.0f;              // stripes and gradient direction, radians from the +x axis
-  std::uint32_t seed = 1;          // noise pattern
-  std::string image_path;          // kImage: a PNG (or any OpenCV-readable) image mapped onto [0,1]^2
+  Rgb colour_a{0.5f, 0.5f, 0.5f};        // constant colour, or the first of two colours
+  Rgb colour_b{0.5f, 0.5f, 0.5f};        // second colour (checker, noise, stripes, gradient)
+  float period = 0.1f;                   // checker cell / stripe period / noise feature size, in normalised units
+  float angle = 0.0f;                    // stripes and gradient direction, radians from the +x axis
+  std::uint32_t seed = 1;                // noise pattern
+  std::string image_path;                // kImage: a PNG (or any OpenCV-readable) image mapped onto [0,1]^2
   std::shared_ptr<const cv::Mat> image;  // kImage: CV_32FC3 RGB in [0, 1], loaded once
 
   Rgb Evaluate(float p, float q) const;
