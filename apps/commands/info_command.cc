@@ -14,6 +14,7 @@
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/stats.h"
+#include "lfsp/decode/container_info.h"
 
 namespace lfsp::cli {
 namespace {
@@ -23,6 +24,7 @@ struct InfoOptions {
   bool json = false;
   int eslf_nu = 0;
   int eslf_nv = 0;
+  std::string extract_dir;  // Lytro inputs: write the embedded items here
 };
 
 nlohmann::ordered_json StatsJson(const ValueStats& stats) {
@@ -109,8 +111,27 @@ bool IsPfm(const std::filesystem::path& path) {
   return extension == ".pfm";
 }
 
+// Lytro containers, raw + TXT pairs and white-image metadata are described by the decode library.
+void RunLytroInfo(const InfoOptions& options) {
+  const std::filesystem::path path(options.path);
+  const nlohmann::ordered_json description = decode::DescribeLytroFile(path);
+  if (options.json) {
+    std::cout << description.dump(2) << std::endl;
+  } else {
+    std::cout << decode::FormatLytroDescription(description);
+  }
+  if (!options.extract_dir.empty()) {
+    const auto written = decode::ExtractLytroFile(path, options.extract_dir);
+    if (!options.json)
+      std::cout << "  extracted    " << written.size() << " files into " << options.extract_dir << "\n";
+  }
+}
+
 void RunInfo(const InfoOptions& options) {
   const std::filesystem::path path(options.path);
+  if (decode::LooksLikeLytroFile(path)) return RunLytroInfo(options);
+  if (!options.extract_dir.empty())
+    throw Error("--extract applies to Lytro files only; " + path.string() + " is not one");
   nlohmann::ordered_json info;
   if (IsPfm(path)) {
     info["format"] = "PFM disparity map";
@@ -134,11 +155,15 @@ void AddInfoCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "info",
       "Print what a file holds: light field (views folder, .h5 bundle, ESLF .png) dimensions, value ranges, "
-      "metadata and disparity range; or a disparity .pfm");
-  command->add_option("path", options->path, "Views folder, .h5 bundle, ESLF image or .pfm")->required();
+      "metadata and disparity range; a disparity .pfm; or a Lytro file (.lfp/.lfr container, calibration "
+      "archive, MOD_*.RAW + .TXT pair): sections, SHA-1s, camera, zoom/focus, exposure, what it holds");
+  command->add_option("path", options->path, "Views folder, .h5 bundle, ESLF image, .pfm or Lytro file")->required();
   command->add_flag("--json", options->json, "Print JSON instead of text (default: text)");
   command->add_option("--eslf-nu", options->eslf_nu, "Angular columns of an ESLF without lfsp attributes (e.g. 14)");
   command->add_option("--eslf-nv", options->eslf_nv, "Angular rows of an ESLF without lfsp attributes (e.g. 14)");
+  command->add_option("--extract", options->extract_dir,
+                      "Lytro files: write the embedded items (JPEG frames, depth maps as PFM, metadata JSON, raw "
+                      "payloads) into this folder (default: none, nothing written)");
   command->callback([options] { RunInfo(*options); });
 }
 
