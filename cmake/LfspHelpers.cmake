@@ -29,7 +29,7 @@ endfunction()
 
 function(lfsp_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
-                                           -Wold-style-cast -Wcast-align -Wunused -Wnull-dereference
+                                           -Wold-style-cast -Wcast-align -Wunused
                                            # GCC 12 reports false positives inside libstdc++ string code
                                            # (GCC bug 105329); they say nothing about ours.
                                            -Wno-restrict -Wno-stringop-overflow)

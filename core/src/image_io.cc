@@ -2,7 +2,14 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
@@ -36,10 +43,92 @@ OIIO::TypeDesc MatType(int depth) {
   }
 }
 
+// Reads all pixels of the open file into `destination` (CV_32FC(n)). Integer files are read in their own type and
+// scaled here as k / (2^bits - 1), so every 8- or 16-bit value maps to exactly the same float on every path.
+bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination) {
+  const OIIO::ImageSpec& spec = input.spec();
+  const int channels = destination.channels();
+  const std::size_t count = destination.total() * static_cast<std::size_t>(channels);
+  float* out = destination.ptr<float>();
+  if (spec.format == OIIO::TypeDesc::UINT8) {
+    std::vector<std::uint8_t> raw(count);
+    if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data())) return false;
+    for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<float>(raw[i]) / 255.0f;
+    return true;
+  }
+  if (spec.format == OIIO::TypeDesc::UINT16) {
+    std::vector<std::uint16_t> raw(count);
+    if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT16, raw.data())) return false;
+    for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<float>(raw[i]) / 65535.0f;
+    return true;
+  }
+  return input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, out);
+}
+
+// Float samples in [0, 1] quantised with rounding to the storage type (OpenImageIO's own conversion may truncate).
+cv::Mat QuantisedForStorage(const cv::Mat& image, OIIO::TypeDesc storage) {
+  if (image.depth() != CV_32F || (storage != OIIO::TypeDesc::UINT8 && storage != OIIO::TypeDesc::UINT16)) return image;
+  const bool eight = storage == OIIO::TypeDesc::UINT8;
+  const float scale = eight ? 255.0f : 65535.0f;
+  cv::Mat quantised(image.rows, image.cols, CV_MAKETYPE(eight ? CV_8U : CV_16U, image.channels()));
+  const std::size_t count = image.total() * static_cast<std::size_t>(image.channels());
+  const float* in = image.ptr<float>();
+  for (std::size_t i = 0; i < count; ++i) {
+    const long level = std::lround(std::clamp(in[i], 0.0f, 1.0f) * scale);
+    if (eight) {
+      quantised.ptr<std::uint8_t>()[i] = static_cast<std::uint8_t>(level);
+    } else {
+      quantised.ptr<std::uint16_t>()[i] = static_cast<std::uint16_t>(level);
+    }
+  }
+  return quantised;
+}
+
+// libpng reports a truncated file on stderr by itself before OpenImageIO sees the error, which would break the CLI's
+// one-line error contract. Walking the chunk headers first (a few small reads) catches truncation cleanly.
+void CheckPngIsComplete(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".png") return;
+  const std::string name = path.string();
+  std::FILE* file = std::fopen(name.c_str(), "rb");
+  if (file == nullptr) ThrowFileError(name, "cannot open");
+  std::error_code ec;
+  const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  unsigned char header[8];
+  std::string problem;
+  if (std::fread(header, 1, 8, file) != 8 || std::memcmp(header, kSignature, 8) != 0) {
+    problem = "not a PNG file (bad signature)";
+  } else {
+    long long offset = 8;
+    while (problem.empty()) {
+      if (std::fread(header, 1, 8, file) != 8) {
+        problem = "truncated PNG: file ends at byte " + std::to_string(offset) + " before the IEND chunk";
+        break;
+      }
+      const long long length = (static_cast<long long>(header[0]) << 24) | (header[1] << 16) | (header[2] << 8) | header[3];
+      const std::string type(reinterpret_cast<const char*>(header + 4), 4);
+      const long long next = offset + 8 + length + 4;  // header, data, CRC
+      if (next > size) {
+        problem = "truncated PNG: chunk " + type + " at byte " + std::to_string(offset) + " runs past the end (" +
+                  std::to_string(size) + " bytes)";
+        break;
+      }
+      if (type == "IEND") break;
+      if (std::fseek(file, static_cast<long>(next), SEEK_SET) != 0) problem = "cannot seek in PNG";
+      offset = next;
+    }
+  }
+  std::fclose(file);
+  if (!problem.empty()) ThrowFileError(name, problem);
+}
+
 }  // namespace
 
 ImageFile ReadImage(const std::filesystem::path& path) {
   const std::string name = path.string();
+  CheckPngIsComplete(path);
   auto input = OIIO::ImageInput::open(name);
   if (!input) {
     std::string why = OIIO::geterror();
@@ -53,7 +142,7 @@ ImageFile ReadImage(const std::filesystem::path& path) {
   ImageFile image;
   image.bit_depth = static_cast<int>(spec.format.size() * 8);
   image.pixels.create(spec.height, spec.width, CV_MAKETYPE(CV_32F, spec.nchannels));
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data)) {
+  if (!ReadAsFloat(*input, image.pixels)) {
     std::string why = input->geterror();
     ThrowFileError(name, "cannot decode image (truncated or corrupt?)" + (why.empty() ? "" : ": " + why));
   }
@@ -66,6 +155,7 @@ ImageFile ReadImage(const std::filesystem::path& path) {
 
 int ReadImageInto(const std::filesystem::path& path, cv::Mat& destination) {
   const std::string name = path.string();
+  CheckPngIsComplete(path);
   auto input = OIIO::ImageInput::open(name);
   if (!input) {
     std::string why = OIIO::geterror();
@@ -81,7 +171,7 @@ int ReadImageInto(const std::filesystem::path& path, cv::Mat& destination) {
                              std::to_string(destination.channels()));
   if (destination.depth() != CV_32F || !destination.isContinuous())
     throw Error("ReadImageInto: destination must be a continuous float image");
-  if (!input->read_image(0, 0, 0, destination.channels(), OIIO::TypeDesc::FLOAT, destination.data)) {
+  if (!ReadAsFloat(*input, destination)) {
     std::string why = input->geterror();
     ThrowFileError(name, "cannot decode image (truncated or corrupt?)" + (why.empty() ? "" : ": " + why));
   }
@@ -106,7 +196,8 @@ void WriteImage(const cv::Mat& image, const std::filesystem::path& path, int bit
   OIIO::ImageSpec spec(image.cols, image.rows, image.channels(), storage);
   for (const auto& [key, value] : text) spec.attribute(key, value);
   if (!writer->open(output.temporary().string(), spec)) ThrowFileError(name, "cannot create: " + writer->geterror());
-  if (!writer->write_image(MatType(image.depth()), image.data))
+  const cv::Mat pixels = QuantisedForStorage(image, storage);
+  if (!writer->write_image(MatType(pixels.depth()), pixels.data))
     ThrowFileError(name, "write failed: " + writer->geterror());
   if (!writer->close()) ThrowFileError(name, "write failed: " + writer->geterror());
   output.Commit();

@@ -1,0 +1,37 @@
+# Thin wrapper: the two commands users need (`make demo`, `make test`) plus `make bench`.
+# Each installs what it needs (tools/bootstrap), configures a Release build in $(BUILD) and builds.
+
+BUILD ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+DEMO_OUT ?= out/demo
+CMAKE_FLAGS ?=
+
+.PHONY: all demo test bench build configure bootstrap format clean
+
+all: build
+
+bootstrap:
+	@tools/bootstrap
+
+configure: bootstrap
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) > $(BUILD).configure.log 2>&1 || \
+	  { cat $(BUILD).configure.log; exit 1; }
+
+build: configure
+	@cmake --build $(BUILD) -j$(JOBS)
+
+# The most complete job the project can do on its bundled sample; prints where the result is.
+demo: build
+	@tools/demo $(BUILD)/apps/lfsp $(DEMO_OUT)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+
+bench: build
+	@$(BUILD)/bench/lfsp_bench
+
+format:
+	@git ls-files '*.cc' '*.h' | xargs clang-format -i
+
+clean:
+	@rm -rf $(BUILD) $(BUILD).configure.log

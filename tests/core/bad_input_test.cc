@@ -1,0 +1,143 @@
+// Bad input gives lfsp::Error naming the file and the problem; `lfsp info` prints one line and exits 2 (issue 2).
+
+#include <H5Cpp.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "lfsp/core/error.h"
+#include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/load.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/views_folder.h"
+#include "test_support.h"
+
+namespace lfsp {
+namespace {
+
+namespace fs = std::filesystem;
+using lfsp::testing::ReadBytes;
+using lfsp::testing::RunLfsp;
+using lfsp::testing::TempDir;
+using lfsp::testing::WriteBytes;
+
+void WriteSmallViewsFolder(const fs::path& folder) {
+  LightField light_field({3, 3, 16, 12, 3});
+  for (std::size_t i = 0; i < light_field.size(); ++i) light_field.data()[i] = static_cast<float>(i % 255) / 255.0f;
+  WriteViewsFolder(light_field, folder);
+}
+
+// Runs `load` expecting lfsp::Error whose message contains every fragment.
+template <typename Load>
+void ExpectErrorMentioning(Load load, const std::vector<std::string>& fragments) {
+  try {
+    load();
+    ADD_FAILURE() << "expected lfsp::Error";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    for (const auto& fragment : fragments)
+      EXPECT_NE(message.find(fragment), std::string::npos) << "message '" << message << "' lacks '" << fragment << "'";
+  }
+}
+
+// `lfsp info PATH` must exit 2 with exactly one line on stderr naming the file.
+void ExpectInfoFailsCleanly(const fs::path& path, const std::string& named) {
+  const auto result = RunLfsp({"info", path.string()});
+  EXPECT_EQ(result.exit_status, 2) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.err.rfind("lfsp: error: ", 0), 0u) << result.err;
+  EXPECT_NE(result.err.find(named), std::string::npos) << result.err;
+}
+
+TEST(BadInput, TruncatedPngView) {
+  TempDir temp;
+  WriteSmallViewsFolder(temp / "lf");
+  const fs::path view = temp / "lf" / "input_Cam004.png";
+  const std::string bytes = ReadBytes(view);
+  WriteBytes(view, bytes.substr(0, bytes.size() / 2));
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {"input_Cam004.png"});
+  ExpectInfoFailsCleanly(temp / "lf", "input_Cam004.png");
+}
+
+TEST(BadInput, MissingView) {
+  TempDir temp;
+  WriteSmallViewsFolder(temp / "lf");
+  fs::remove(temp / "lf" / "input_Cam007.png");
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {"input_Cam007.png", "missing"});
+  ExpectInfoFailsCleanly(temp / "lf", "input_Cam007.png");
+}
+
+TEST(BadInput, ViewsOfDifferentSizes) {
+  TempDir temp;
+  WriteSmallViewsFolder(temp / "lf");
+  WriteImage(cv::Mat(12, 15, CV_32FC3, cv::Scalar::all(0.5)), temp / "lf" / "input_Cam002.png");
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {"input_Cam002.png", "15x12", "16x12"});
+  ExpectInfoFailsCleanly(temp / "lf", "input_Cam002.png");
+}
+
+TEST(BadInput, GarbagePfmHeader) {
+  TempDir temp;
+  WriteBytes(temp / "garbage.pfm", "P7\nhello world\n\x01\x02");
+  ExpectErrorMentioning([&] { ReadPfm(temp / "garbage.pfm"); }, {"garbage.pfm", "not a PFM"});
+  ExpectInfoFailsCleanly(temp / "garbage.pfm", "garbage.pfm");
+
+  WriteBytes(temp / "size.pfm", "Pf\n-4 abc\n-1.0\n");
+  ExpectErrorMentioning([&] { ReadPfm(temp / "size.pfm"); }, {"size.pfm", "width"});
+
+  WriteBytes(temp / "short.pfm", "Pf\n4 4\n-1.0\n" + std::string(20, '\0'));
+  ExpectErrorMentioning([&] { ReadPfm(temp / "short.pfm"); }, {"short.pfm", "truncated", "64"});
+}
+
+TEST(BadInput, Hdf5WithoutLightField) {
+  TempDir temp;
+  const fs::path path = temp / "nolf.h5";
+  {
+    H5::H5File file(path.string(), H5F_ACC_TRUNC);
+    const hsize_t dims[1] = {4};
+    const int values[4] = {1, 2, 3, 4};
+    file.createDataSet("something_else", H5::PredType::NATIVE_INT, H5::DataSpace(1, dims))
+        .write(values, H5::PredType::NATIVE_INT);
+  }
+  ExpectErrorMentioning([&] { ReadBundle(path); }, {"nolf.h5", "LF"});
+  ExpectInfoFailsCleanly(path, "nolf.h5");
+}
+
+TEST(BadInput, FilesThatAreNotWhatTheirNameSays) {
+  TempDir temp;
+  WriteBytes(temp / "fake.h5", "this is not hdf5");
+  ExpectErrorMentioning([&] { ReadBundle(temp / "fake.h5"); }, {"fake.h5", "not an HDF5"});
+  ExpectInfoFailsCleanly(temp / "fake.h5", "fake.h5");
+  ExpectErrorMentioning([&] { LoadLightField(temp / "absent"); }, {"absent", "no such"});
+  fs::create_directories(temp / "empty");
+  ExpectErrorMentioning([&] { LoadLightField(temp / "empty"); }, {"empty", "no light-field views"});
+}
+
+TEST(BadInput, FailedWriteLeavesNothingBehind) {
+  TempDir temp;
+  LightField light_field({2, 2, 8, 8, 3});
+  // Bit depth 12 is refused part-way; the destination must not appear, nor any temporary.
+  ViewsFolderOptions options;
+  options.bit_depth = 12;
+  EXPECT_THROW(WriteViewsFolder(light_field, temp / "out", options), Error);
+  EXPECT_TRUE(fs::is_empty(temp.path()));
+}
+
+TEST(Cli, UnknownOptionIsBadInput) {
+  const auto result = RunLfsp({"info", "--no-such-option", "x"});
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_EQ(result.err.rfind("lfsp: error: ", 0), 0u) << result.err;
+}
+
+TEST(Cli, HelpAndVersion) {
+  const auto help = RunLfsp({"--help"});
+  EXPECT_EQ(help.exit_status, 0);
+  EXPECT_NE(help.out.find("info"), std::string::npos);
+  const auto version = RunLfsp({"--version"});
+  EXPECT_EQ(version.exit_status, 0);
+  EXPECT_NE(version.out.find("lfsp "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lfsp

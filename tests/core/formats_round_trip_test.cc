@@ -1,0 +1,201 @@
+// Round trips between every light-field format must be exact for 8- and 16-bit data (issue 2).
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "lfsp/core/error.h"
+#include "lfsp/core/eslf.h"
+#include "lfsp/core/hci_config.h"
+#include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/load.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/views_folder.h"
+#include "test_support.h"
+
+namespace lfsp {
+namespace {
+
+using lfsp::testing::TempDir;
+
+// A 5x5 light field of 64x48 views whose samples are exact k / (2^bits - 1) values.
+LightField QuantisedLightField(int bits, unsigned seed) {
+  LightField light_field({5, 5, 64, 48, 3});
+  std::mt19937 random(seed);
+  const int levels = (1 << bits) - 1;
+  std::uniform_int_distribution<int> level(0, levels);
+  for (std::size_t i = 0; i < light_field.size(); ++i)
+    light_field.data()[i] = static_cast<float>(level(random)) / static_cast<float>(levels);
+  light_field.metadata["meta"]["scene"] = "round-trip";
+  SetDisparityRange(light_field.metadata, {-1.5f, 2.25f});
+  return light_field;
+}
+
+void ExpectSameSamples(const LightField& a, const LightField& b) {
+  ASSERT_EQ(a.shape(), b.shape());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differing += a.data()[i] != b.data()[i];
+  EXPECT_EQ(differing, 0u) << "samples differ after the round trip";
+}
+
+class FormatsRoundTrip : public ::testing::TestWithParam<int> {};
+
+TEST_P(FormatsRoundTrip, ViewsFolderToHdf5ToEslfAndBackIsExact) {
+  const int bits = GetParam();
+  TempDir temp;
+  const LightField original = QuantisedLightField(bits, 7u + static_cast<unsigned>(bits));
+
+  ViewsFolderOptions views_options;
+  views_options.bit_depth = bits;
+  WriteViewsFolder(original, temp / "views", views_options);
+  const LightField from_views = ReadViewsFolder(temp / "views");
+  ExpectSameSamples(original, from_views);
+  EXPECT_EQ(from_views.metadata["meta"]["scene"], "round-trip");
+  ASSERT_TRUE(DisparityRangeFromMetadata(from_views.metadata).has_value());
+  EXPECT_FLOAT_EQ(DisparityRangeFromMetadata(from_views.metadata)->max, 2.25f);
+
+  Bundle bundle;
+  bundle.light_field = from_views;
+  WriteBundle(bundle, temp / "lf.h5");
+  const Bundle from_h5 = ReadBundle(temp / "lf.h5");
+  ExpectSameSamples(original, from_h5.light_field);
+  EXPECT_EQ(from_h5.light_field.metadata, from_views.metadata);
+
+  EslfOptions eslf_options;
+  eslf_options.bit_depth = bits;
+  WriteEslf(from_h5.light_field, temp / "lf.eslf.png", eslf_options);
+  const LightField from_eslf = ReadEslf(temp / "lf.eslf.png");
+  ExpectSameSamples(original, from_eslf);
+
+  WriteViewsFolder(from_eslf, temp / "views_again", views_options);
+  ExpectSameSamples(original, ReadViewsFolder(temp / "views_again"));
+}
+
+TEST_P(FormatsRoundTrip, QuantisedHdf5StorageIsExactForItsBitDepth) {
+  const int bits = GetParam();
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(bits, 3);
+  BundleWriteOptions options;
+  options.storage = bits == 8 ? SampleStorage::kUint8 : SampleStorage::kUint16;
+  options.compression_level = 4;
+  WriteBundle(bundle, temp / "q.h5", options);
+  ExpectSameSamples(bundle.light_field, ReadBundle(temp / "q.h5").light_field);
+}
+
+INSTANTIATE_TEST_SUITE_P(BitDepths, FormatsRoundTrip, ::testing::Values(8, 16));
+
+TEST(EslfLayout, MacroPixelHoldsAllAngularSamples) {
+  TempDir temp;
+  LightField light_field({3, 2, 4, 5, 3});
+  for (int v = 0; v < 2; ++v)
+    for (int u = 0; u < 3; ++u) light_field.at({u, v}, 4, 1, 0) = static_cast<float>(10 * v + u) / 255.0f;
+  WriteEslf(light_field, temp / "e.png");
+  const ImageFile image = ReadImage(temp / "e.png");
+  ASSERT_EQ(image.pixels.cols, 4 * 3);
+  ASSERT_EQ(image.pixels.rows, 5 * 2);
+  // image(y*nv + v, x*nu + u) = view(u, v)(y, x)
+  EXPECT_FLOAT_EQ(image.pixels.at<cv::Vec3f>(4 * 2 + 1, 1 * 3 + 2)[0], 12.0f / 255.0f);
+  EXPECT_FLOAT_EQ(image.pixels.at<cv::Vec3f>(4 * 2 + 0, 1 * 3 + 0)[0], 0.0f);
+}
+
+TEST(EslfLayout, ForeignEslfNeedsTheAngularSize) {
+  TempDir temp;
+  cv::Mat plain(28, 42, CV_32FC3, cv::Scalar(0.5, 0.25, 1.0));
+  WriteImage(plain, temp / "foreign.png");
+  EXPECT_THROW(ReadEslf(temp / "foreign.png"), Error);
+  EslfOptions options;
+  options.nu = 14;
+  options.nv = 14;
+  const LightField light_field = ReadEslf(temp / "foreign.png", options);
+  EXPECT_EQ(light_field.shape(), (LightFieldShape{14, 14, 3, 2, 3}));
+}
+
+TEST(Hdf5Bundle, DisparityLabelsWeightsAndTransferSurvive) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(8, 11);
+  bundle.light_field.transfer = Transfer::kLinear;
+  bundle.light_field.EnableWeights(0.0f);
+  for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+    bundle.light_field.weights().data()[i] = static_cast<float>(i % 97) / 96.0f;
+  DisparityMap disparity(64, 48);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) disparity.at(y, x) = 0.01f * static_cast<float>(x) - 0.02f * static_cast<float>(y);
+  bundle.disparity = disparity;
+  Labels labels(bundle.light_field.shape());
+  for (std::size_t i = 0; i < labels.size(); ++i) labels.data()[i] = static_cast<int>(i % 1000) - 1;
+  bundle.labels = labels;
+  WriteBundle(bundle, temp / "full.h5");
+
+  const Bundle read = ReadBundle(temp / "full.h5");
+  EXPECT_EQ(read.light_field.transfer, Transfer::kLinear);
+  ASSERT_TRUE(read.light_field.HasWeights());
+  EXPECT_EQ(read.light_field.weights().at({4, 3}, 47, 63), bundle.light_field.weights().at({4, 3}, 47, 63));
+  ASSERT_TRUE(read.disparity.has_value());
+  EXPECT_EQ(read.disparity->at(47, 63), disparity.at(47, 63));
+  EXPECT_EQ(read.disparity->at(3, 5), disparity.at(3, 5));
+  ASSERT_TRUE(read.labels.has_value());
+  EXPECT_TRUE(std::equal(labels.data(), labels.data() + labels.size(), read.labels->data()));
+}
+
+TEST(Pfm, WriteReadIsExactAndStoredBottomRowFirst) {
+  TempDir temp;
+  DisparityMap disparity(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) disparity.at(y, x) = static_cast<float>(10 * y + x) + 0.125f;
+  WritePfm(disparity, temp / "d.pfm");
+  const DisparityMap read = ReadPfm(temp / "d.pfm");
+  ASSERT_EQ(read.width(), 5);
+  ASSERT_EQ(read.height(), 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(read.at(y, x), disparity.at(y, x));
+
+  // On disk: header "Pf\n5 3\n-1.0\n", then the bottom image row (y = 2) first, little-endian.
+  const std::string bytes = lfsp::testing::ReadBytes(temp / "d.pfm");
+  const std::string header = "Pf\n5 3\n-1.0\n";
+  ASSERT_EQ(bytes.substr(0, header.size()), header);
+  ASSERT_EQ(bytes.size(), header.size() + 5 * 3 * 4);
+  float first = 0.0f;
+  std::memcpy(&first, bytes.data() + header.size(), 4);
+  EXPECT_EQ(first, disparity.at(2, 0));
+}
+
+TEST(HciConfig, ParsesSectionsNumbersAndText) {
+  const Metadata config = ParseHciConfig(
+      "[extrinsics]\nnum_cams_x = 9\nbaseline_mm = 100.0\n\n[meta]\ndisp_min = -3.3\ndate = 2017-03-20\n", "test.cfg");
+  EXPECT_EQ(config["extrinsics"]["num_cams_x"].get<int>(), 9);
+  EXPECT_DOUBLE_EQ(config["extrinsics"]["baseline_mm"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(config["meta"]["disp_min"].get<double>(), -3.3);
+  EXPECT_EQ(config["meta"]["date"].get<std::string>(), "2017-03-20");
+  EXPECT_EQ(ParseHciConfig(FormatHciConfig(config), "again"), config);
+  EXPECT_THROW(ParseHciConfig("[broken\n", "bad.cfg"), Error);
+  EXPECT_THROW(ParseHciConfig("[a]\njust text\n", "bad.cfg"), Error);
+}
+
+TEST(SaveLightField, ViewsFolderCarriesTheDisparity) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(8, 5);
+  bundle.disparity = DisparityMap(64, 48, 0.75f);
+  SaveLightField(bundle, temp / "out");
+  const Bundle loaded = LoadLightField(temp / "out");
+  ExpectSameSamples(bundle.light_field, loaded.light_field);
+  ASSERT_TRUE(loaded.disparity.has_value());
+  EXPECT_EQ(loaded.disparity->at(10, 10), 0.75f);
+}
+
+TEST(SaveLightField, RefusesToReplaceAFolderThatIsNotALightField) {
+  TempDir temp;
+  std::filesystem::create_directories(temp / "precious");
+  lfsp::testing::WriteBytes(temp / "precious" / "thesis.tex", "do not delete");
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(8, 5);
+  EXPECT_THROW(SaveLightField(bundle, temp / "precious"), Error);
+  EXPECT_EQ(lfsp::testing::ReadBytes(temp / "precious" / "thesis.tex"), "do not delete");
+}
+
+}  // namespace
+}  // namespace lfsp
