@@ -1,0 +1,56 @@
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "lfsp/core/light_field.h"
+
+namespace lfsp::segment {
+
+// Superpixel metrics. The 2D forms take one view (CV_32SC1 label maps of equal size); the 4D forms score every view
+// and average over views, which is how the light-field papers report them (Khan et al. ICCV 2019, LFSP TIP 2020).
+// Ground-truth pixels labelled < 0 (unlabelled) are ignored by UE and ASA.
+
+// Boundary recall: the share of ground-truth boundary pixels (a 4-neighbour has another label) that have a
+// superpixel boundary pixel within `tolerance` pixels (chessboard distance). Returns -1 if `gt` has no boundary.
+double BoundaryRecall2D(const cv::Mat& labels, const cv::Mat& gt, int tolerance = 2);
+// Neubert-Protzel corrected under-segmentation error: (1/N) sum_i sum_j min(|S_j n G_i|, |S_j - G_i|).
+double UndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt);
+// The per-region variant of Khan et al.: for each ground-truth region G_i, sum over superpixels S_j touching it of
+// |S_j - G_i| if most of S_j lies in G_i, else |S_j n G_i|, divided by |G_i|; the mean over regions.
+double RegionUndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt);
+// Achievable segmentation accuracy: (1/N) sum_j max_i |S_j n G_i|.
+double AchievableSegmentationAccuracy2D(const cv::Mat& labels, const cv::Mat& gt);
+// Compactness (Schick et al.): sum_j (|S_j| / N) 4 pi |S_j| / L_j^2, L_j the perimeter in pixel edges (image border
+// included).
+double Compactness2D(const cv::Mat& labels);
+
+double BoundaryRecall(const Labels& labels, const Labels& gt, int tolerance = 2);
+double UndersegmentationError(const Labels& labels, const Labels& gt);
+double RegionUndersegmentationError(const Labels& labels, const Labels& gt);
+double AchievableSegmentationAccuracy(const Labels& labels, const Labels& gt);
+double Compactness(const Labels& labels);
+
+// Effective label ratio (Eq. 11): labels present in the centre view / labels present anywhere.
+double EffectiveLabelRatio(const Labels& labels);
+
+// Distinct labels in the centre view and in the whole light field.
+int CentreLabelCount(const Labels& labels);
+int LabelCount(const Labels& labels);
+
+// The disparity of every ray from a centre-view disparity map: forward-projected with occlusion order, holes filled
+// from the background side of the epipolar line. Views in camera order (cam = v * nu + u).
+std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const LightFieldShape& shape);
+
+// LFSP self-similarity (Eqs. 8-10): every slice projected to the centre view with the ground-truth disparity of its
+// rays, the distance of its centroid from the centre slice's centroid, averaged over the views where the label
+// appears, then over labels present in the centre view and in at least one other view. Pixels.
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
+
+// Labels per pixel (Khan et al.): every centre pixel followed into each view where it is visible (the view's
+// disparity agrees within 0.5 px); 1 + the mean number of distinct labels met there that are absent from the centre
+// labels of its 3x3 neighbourhood. 1 for a perfectly view-consistent segmentation.
+double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity,
+                      const std::vector<DisparityMap>& view_disparity);
+
+}  // namespace lfsp::segment

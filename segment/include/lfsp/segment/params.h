@@ -1,0 +1,46 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+namespace lfsp::segment {
+
+// Parameters of the LFSP segmentation (Zhu, Zhang, Wang, TIP 2020). The weights default to the paper's Table II.
+//
+// The energy of one ray p in view (u, v) with candidate label k is (Eq. 3, per ray):
+//   E_c  = |Lab(p) - c_k^{uv}|^2 / colour_scale^2                    colour against the slice's mean colour
+//   E_p  = |p - mu_k^{uv}|^2 / size^2                                position against the slice's centroid
+//   E_d  = ((d(p) - dhat(p, pi_k)) / (max d - min d))^2              centre view only (Eq. 4)
+//   E_b  = sum over the 80-neighbour clique q of pen(q) [s(q) != k] / 8   (Eq. 7; pen = spatial/angular/mixed)
+//   E    = E_c + lambda_p E_p + lambda_d E_d + lambda_b E_b
+// The two normalisations the paper leaves implicit are explicit here: colour is measured in units of
+// `colour_scale` Lab units (so lambda_p = 1 behaves like SLIC's compactness m = colour_scale), and the clique sum is
+// divided by 8, so one whole ring of differing spatial neighbours costs E_pen_s.
+// The planes minimise lambda_d sum E_d + lambda_s sum E_s (Eq. 5) with boundary types occlusion / hinge / coplanar.
+struct LfspParams {
+  int size = 20;                  // superpixel size: grid step of the centre-view seeds, pixels
+  double lambda_p = 2.0;          // position weight (Table II)
+  double lambda_d = 50.0;         // disparity weight (Table II)
+  double lambda_s = 0.01;         // plane smoothness weight (Table II)
+  double lambda_b = 1.0;          // boundary weight (Table II)
+  double pen_spatial = 1.0;       // E_pen_s, spatial neighbours (Table II)
+  double pen_mixed = 0.7;         // E_pen_m, mixed neighbours (Table II)
+  double pen_angular = 4.0;       // E_pen_a, angular neighbours (Table II)
+  double colour_scale = 10.0;     // Lab distance worth one unit of energy
+  int slic_iterations = 10;       // iterations of the initial centre-view SLIC (colour + position + disparity)
+  int iterations = 10;            // outer block-coordinate-descent iterations (label moves + plane smoothing)
+  int plane_iterations = 10;      // inner plane-smoothing iterations (boundary typing + plane refit) per outer one
+  double inlier_threshold = 0.5;  // |d - plane| (px/view) above which a centre pixel does not pull its plane
+  double hinge_penalty = 0.05;    // constant cost of a hinge boundary (px^2, SPS's 5 scaled to light-field disparities)
+  double occlusion_penalty = 0.25;  // cost of an occlusion boundary (px^2; SPS 15)
+  double impossible_penalty = 0.5;  // added when the claimed occluder is behind along the boundary (px^2; SPS 30)
+  double convergence = 1e-5;        // stop when fewer than this fraction of rays changed label in an outer iteration
+  int threads = 0;                  // OpenMP threads; 0 = default
+};
+
+nlohmann::json ToJson(const LfspParams& params);
+// Reads the fields present in `json` over the defaults; throws lfsp::Error naming `where` on a bad value.
+LfspParams ParamsFromJson(const nlohmann::json& json, const std::string& where = "parameters");
+// Throws lfsp::Error naming the parameter when a value is out of range.
+void Validate(const LfspParams& params);
+
+}  // namespace lfsp::segment

@@ -1,0 +1,60 @@
+#include "lab_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::segment {
+namespace {
+
+float EncodeSrgb(float linear) {
+  const float v = std::clamp(linear, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+cv::Mat LabView(std::vector<float>& lab, const LightFieldShape& shape, ViewIndex view) {
+  const std::size_t offset =
+      (static_cast<std::size_t>(view.v) * static_cast<std::size_t>(shape.nu) + static_cast<std::size_t>(view.u)) *
+      shape.ViewPixels() * 3;
+  return cv::Mat(shape.height, shape.width, CV_32FC3, lab.data() + offset);
+}
+
+std::vector<float> LabOfLightField(const LightField& light_field) {
+  const LightFieldShape& shape = light_field.shape();
+  if (shape.channels != 3 && shape.channels != 1) {
+    throw Error("segmentation needs an RGB or grey light field, got " + std::to_string(shape.channels) + " channels");
+  }
+  std::vector<float> lab(shape.Views() * shape.ViewPixels() * 3);
+  // 8-bit sRGB -> 8-bit Lab goes through OpenCV's lookup tables, an order of magnitude faster than the float path;
+  // the quantisation (L steps of 0.4, a/b steps of 1) is far below the colour differences segmentation weighs.
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    cv::Mat source = light_field.View(view);
+    cv::Mat rgb;
+    if (light_field.transfer == Transfer::kLinear) {
+      source = source.clone();
+      source.forEach<float>([](float& value, const int*) { value = EncodeSrgb(value); });
+    }
+    source.convertTo(rgb, CV_8U, 255.0);
+    if (shape.channels == 1) cv::cvtColor(rgb, rgb, cv::COLOR_GRAY2RGB);
+    cv::Mat lab8;
+    cv::cvtColor(rgb, lab8, cv::COLOR_RGB2Lab);  // 8-bit: L * 255 / 100, a + 128, b + 128
+    cv::Mat out = LabView(lab, shape, view);
+    for (int y = 0; y < shape.height; ++y) {
+      const cv::Vec3b* in = lab8.ptr<cv::Vec3b>(y);
+      cv::Vec3f* o = out.ptr<cv::Vec3f>(y);
+      for (int x = 0; x < shape.width; ++x) {
+        o[x] = {in[x][0] * (100.0f / 255.0f), in[x][1] - 128.0f, in[x][2] - 128.0f};
+      }
+    }
+  }
+  return lab;
+}
+
+}  // namespace lfsp::segment

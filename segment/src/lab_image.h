@@ -1,0 +1,17 @@
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "lfsp/core/light_field.h"
+
+namespace lfsp::segment {
+
+// CIELab samples of every ray, layout [v][u][y][x][3] like the light field (L in 0..100, a/b about -100..100).
+// Linear light fields are sRGB-encoded first, so distances are perceptual for both transfers.
+std::vector<float> LabOfLightField(const LightField& light_field);
+
+// One view of such a buffer as a zero-copy CV_32FC3 matrix.
+cv::Mat LabView(std::vector<float>& lab, const LightFieldShape& shape, ViewIndex view);
+
+}  // namespace lfsp::segment

@@ -1,0 +1,137 @@
+#include "lfsp/segment/lfsp.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <opencv2/core.hpp>
+
+#include "centre_slic.h"
+#include "connectivity.h"
+#include "lab_image.h"
+#include "lfsp/core/error.h"
+#include "planes.h"
+#include "refine.h"
+#include "warp.h"
+
+namespace lfsp::segment {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The centre disparity with non-finite samples replaced by the median, and its range (at least 1e-3).
+cv::Mat CleanDisparity(const DisparityMap& disparity, double& range) {
+  cv::Mat clean = disparity.Mat().clone();
+  std::vector<float> finite;
+  finite.reserve(clean.total());
+  for (auto it = clean.begin<float>(); it != clean.end<float>(); ++it) {
+    if (std::isfinite(*it)) finite.push_back(*it);
+  }
+  if (finite.empty()) throw Error("LFSP: the disparity map has no finite value");
+  const auto [lo, hi] = std::minmax_element(finite.begin(), finite.end());
+  range = std::max(1e-3, static_cast<double>(*hi - *lo));
+  auto middle = finite.begin() + static_cast<std::ptrdiff_t>(finite.size() / 2);
+  std::nth_element(finite.begin(), middle, finite.end());
+  const float median = *middle;
+  for (auto it = clean.begin<float>(); it != clean.end<float>(); ++it) {
+    if (!std::isfinite(*it)) *it = median;
+  }
+  return clean;
+}
+
+// Algorithm 1, lines 3-14: every centre-view superpixel projected into every view along its plane, front-most
+// first, then the rays nothing projects to filled from the background side of their epipolar line.
+void ProjectSuperpixels(const cv::Mat& centre_labels, const std::vector<Plane>& planes, Labels& labels) {
+  const LightFieldShape& shape = labels.shape();
+  const ViewIndex centre = shape.Centre();
+  cv::Mat plane_disparity(centre_labels.size(), CV_32F);
+  float max_abs = 0.0f;
+  for (int y = 0; y < centre_labels.rows; ++y) {
+    for (int x = 0; x < centre_labels.cols; ++x) {
+      const float d = static_cast<float>(planes[static_cast<std::size_t>(centre_labels.at<int>(y, x))].AtCentre(x, y));
+      plane_disparity.at<float>(y, x) = d;
+      max_abs = std::max(max_abs, std::abs(d));
+    }
+  }
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    std::int32_t* out = labels.ViewData(view);
+    if (view == centre) {
+      std::copy(centre_labels.ptr<int>(0), centre_labels.ptr<int>(0) + centre_labels.total(), out);
+      continue;
+    }
+    const int du = view.u - centre.u, dv = view.v - centre.v;
+    std::vector<float> depth(shape.ViewPixels());
+    ForwardWarp(centre_labels.ptr<std::int32_t>(0), plane_disparity.ptr<float>(0), shape.width, shape.height, du, dv,
+                out, depth.data());
+    const int reach =
+        static_cast<int>(std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv))))) + 2;
+    FillHoles(out, depth.data(), shape.width, shape.height, du, dv, std::min(reach, 512));
+  }
+}
+
+}  // namespace
+
+LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& disparity, const LfspParams& params) {
+  Validate(params);
+  const LightFieldShape& shape = light_field.shape();
+  if (light_field.empty()) throw Error("LFSP: the light field is empty");
+  if (disparity.width() != shape.width || disparity.height() != shape.height) {
+    throw Error("LFSP: disparity map is " + std::to_string(disparity.width()) + "x" +
+                std::to_string(disparity.height()) + " but the views are " + std::to_string(shape.width) + "x" +
+                std::to_string(shape.height));
+  }
+  const int saved_threads = omp_get_max_threads();
+  if (params.threads > 0) omp_set_num_threads(params.threads);
+  const auto start = std::chrono::steady_clock::now();
+  LfspResult result;
+
+  auto step = std::chrono::steady_clock::now();
+  std::vector<float> lab = LabOfLightField(light_field);
+  result.timings.lab_seconds = SecondsSince(step);
+
+  step = std::chrono::steady_clock::now();
+  double range = 1.0;
+  const cv::Mat centre_disparity = CleanDisparity(disparity, range);
+  const ViewIndex centre = shape.Centre();
+  cv::Mat centre_labels =
+      CentreSuperpixels(LabView(lab, shape, centre), centre_disparity, range, params, result.superpixels);
+  result.planes = FitPlanes(centre_labels, result.superpixels, centre_disparity, params.inlier_threshold);
+  result.timings.initial_seconds = SecondsSince(step);
+
+  step = std::chrono::steady_clock::now();
+  result.labels = Labels(shape);
+  ProjectSuperpixels(centre_labels, result.planes, result.labels);
+  result.timings.projection_seconds = SecondsSince(step);
+
+  step = std::chrono::steady_clock::now();
+  RefineInputs inputs;
+  inputs.lab = lab.data();
+  inputs.centre_disparity = centre_disparity.ptr<float>(0);
+  inputs.disparity_range = range;
+  inputs.superpixels = result.superpixels;
+  const RefineReport report = RefineLabels(inputs, params, result.labels, result.planes);
+  result.iterations_run = report.iterations;
+  result.label_moves = report.moves;
+  result.moves_per_iteration = report.moves_per_iteration;
+  result.timings.refine_seconds = SecondsSince(step);
+
+  step = std::chrono::steady_clock::now();
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    KeepLargestPieces(result.labels.ViewData(ViewFromCameraNumber(cam, shape.nu)), shape.width, shape.height);
+  }
+  result.timings.cleanup_seconds = SecondsSince(step);
+  result.timings.total_seconds = SecondsSince(start);
+  if (params.threads > 0) omp_set_num_threads(saved_threads);
+  return result;
+}
+
+}  // namespace lfsp::segment

@@ -1,0 +1,333 @@
+#include "lfsp/segment/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "lfsp/core/error.h"
+#include "warp.h"
+
+namespace lfsp::segment {
+namespace {
+
+void CheckSameSize(const cv::Mat& labels, const cv::Mat& gt) {
+  if (labels.size() != gt.size() || labels.type() != CV_32SC1 || gt.type() != CV_32SC1) {
+    throw Error("segmentation metrics: label maps must be CV_32SC1 of the same size");
+  }
+}
+
+void CheckSameShape(const Labels& labels, const Labels& gt) {
+  const LightFieldShape& a = labels.shape();
+  const LightFieldShape& b = gt.shape();
+  if (a.nu != b.nu || a.nv != b.nv || a.width != b.width || a.height != b.height) {
+    throw Error("segmentation metrics: labels are " + ToString(a) + " but the ground truth is " + ToString(b));
+  }
+}
+
+// Pixels where a 4-neighbour has another label (both sides of a label change are boundary).
+cv::Mat BoundaryMask(const cv::Mat& labels) {
+  cv::Mat mask = cv::Mat::zeros(labels.size(), CV_8U);
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* row = labels.ptr<int>(y);
+    const int* below = y + 1 < labels.rows ? labels.ptr<int>(y + 1) : nullptr;
+    for (int x = 0; x < labels.cols; ++x) {
+      if (x + 1 < labels.cols && row[x + 1] != row[x]) mask.at<uchar>(y, x) = mask.at<uchar>(y, x + 1) = 1;
+      if (below != nullptr && below[x] != row[x]) mask.at<uchar>(y, x) = mask.at<uchar>(y + 1, x) = 1;
+    }
+  }
+  return mask;
+}
+
+// Overlap counts |S_j n G_i| with the sizes |S_j| (over ground-truth-labelled pixels) and |G_i|.
+struct Overlaps {
+  std::unordered_map<std::uint64_t, long long> joint;  // (j << 32 | i) -> count
+  std::unordered_map<int, long long> superpixel;
+  std::unordered_map<int, long long> region;
+  long long pixels = 0;
+};
+
+Overlaps CountOverlaps(const cv::Mat& labels, const cv::Mat& gt) {
+  CheckSameSize(labels, gt);
+  Overlaps o;
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* s = labels.ptr<int>(y);
+    const int* g = gt.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      if (g[x] < 0) continue;
+      ++o.joint[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[x])) << 32) |
+                static_cast<std::uint32_t>(g[x])];
+      ++o.superpixel[s[x]];
+      ++o.region[g[x]];
+      ++o.pixels;
+    }
+  }
+  return o;
+}
+
+int SuperpixelOf(std::uint64_t key) { return static_cast<int>(static_cast<std::uint32_t>(key >> 32)); }
+int RegionOf(std::uint64_t key) { return static_cast<int>(static_cast<std::uint32_t>(key & 0xffffffffu)); }
+
+// Mean over views of a per-view score; views where the score is negative (undefined) are skipped.
+template <typename Score>
+double MeanOverViews(const LightFieldShape& shape, Score score) {
+  const int views = static_cast<int>(shape.Views());
+  std::vector<double> values(static_cast<std::size_t>(views));
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam)
+    values[static_cast<std::size_t>(cam)] = score(ViewFromCameraNumber(cam, shape.nu));
+  double sum = 0.0;
+  int count = 0;
+  for (double value : values) {
+    if (value < 0.0) continue;
+    sum += value;
+    ++count;
+  }
+  return count > 0 ? sum / count : -1.0;
+}
+
+}  // namespace
+
+double BoundaryRecall2D(const cv::Mat& labels, const cv::Mat& gt, int tolerance) {
+  CheckSameSize(labels, gt);
+  const cv::Mat gt_boundary = BoundaryMask(gt);
+  const int total = cv::countNonZero(gt_boundary);
+  if (total == 0) return -1.0;
+  cv::Mat near;
+  cv::dilate(BoundaryMask(labels), near,
+             cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * tolerance + 1, 2 * tolerance + 1)));
+  cv::Mat hit;
+  cv::bitwise_and(gt_boundary, near, hit);
+  return static_cast<double>(cv::countNonZero(hit)) / total;
+}
+
+double UndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt) {
+  const Overlaps o = CountOverlaps(labels, gt);
+  if (o.pixels == 0) return -1.0;
+  long long error = 0;
+  for (const auto& [key, inside] : o.joint) {
+    const long long outside = o.superpixel.at(SuperpixelOf(key)) - inside;
+    error += std::min(inside, outside);
+  }
+  return static_cast<double>(error) / static_cast<double>(o.pixels);
+}
+
+double RegionUndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt) {
+  const Overlaps o = CountOverlaps(labels, gt);
+  if (o.region.empty()) return -1.0;
+  std::unordered_map<int, double> error_of_region;
+  for (const auto& [key, inside] : o.joint) {
+    const long long size = o.superpixel.at(SuperpixelOf(key));
+    const long long error = 2 * inside > size ? size - inside : inside;
+    error_of_region[RegionOf(key)] += static_cast<double>(error);
+  }
+  double sum = 0.0;
+  for (const auto& [region, size] : o.region) sum += error_of_region[region] / static_cast<double>(size);
+  return sum / static_cast<double>(o.region.size());
+}
+
+double AchievableSegmentationAccuracy2D(const cv::Mat& labels, const cv::Mat& gt) {
+  const Overlaps o = CountOverlaps(labels, gt);
+  if (o.pixels == 0) return -1.0;
+  std::unordered_map<int, long long> best;
+  for (const auto& [key, inside] : o.joint) {
+    long long& b = best[SuperpixelOf(key)];
+    b = std::max(b, inside);
+  }
+  long long sum = 0;
+  for (const auto& [superpixel, count] : best) sum += count;
+  return static_cast<double>(sum) / static_cast<double>(o.pixels);
+}
+
+double Compactness2D(const cv::Mat& labels) {
+  if (labels.type() != CV_32SC1 || labels.empty()) throw Error("compactness: labels must be a CV_32SC1 map");
+  std::unordered_map<int, long long> area, perimeter;
+  for (int y = 0; y < labels.rows; ++y) {
+    for (int x = 0; x < labels.cols; ++x) {
+      const int k = labels.at<int>(y, x);
+      ++area[k];
+      const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+      for (const auto& n : neighbours) {
+        const bool outside = n[0] < 0 || n[1] < 0 || n[0] >= labels.cols || n[1] >= labels.rows;
+        if (outside || labels.at<int>(n[1], n[0]) != k) ++perimeter[k];
+      }
+    }
+  }
+  const double n = static_cast<double>(labels.total());
+  double sum = 0.0;
+  for (const auto& [k, a] : area) {
+    const double l = static_cast<double>(perimeter[k]);
+    sum += (static_cast<double>(a) / n) * 4.0 * std::numbers::pi * static_cast<double>(a) / (l * l);
+  }
+  return sum;
+}
+
+double BoundaryRecall(const Labels& labels, const Labels& gt, int tolerance) {
+  CheckSameShape(labels, gt);
+  return MeanOverViews(labels.shape(),
+                       [&](ViewIndex v) { return BoundaryRecall2D(labels.View(v), gt.View(v), tolerance); });
+}
+
+double UndersegmentationError(const Labels& labels, const Labels& gt) {
+  CheckSameShape(labels, gt);
+  return MeanOverViews(labels.shape(),
+                       [&](ViewIndex v) { return UndersegmentationError2D(labels.View(v), gt.View(v)); });
+}
+
+double RegionUndersegmentationError(const Labels& labels, const Labels& gt) {
+  CheckSameShape(labels, gt);
+  return MeanOverViews(labels.shape(),
+                       [&](ViewIndex v) { return RegionUndersegmentationError2D(labels.View(v), gt.View(v)); });
+}
+
+double AchievableSegmentationAccuracy(const Labels& labels, const Labels& gt) {
+  CheckSameShape(labels, gt);
+  return MeanOverViews(labels.shape(),
+                       [&](ViewIndex v) { return AchievableSegmentationAccuracy2D(labels.View(v), gt.View(v)); });
+}
+
+double Compactness(const Labels& labels) {
+  return MeanOverViews(labels.shape(), [&](ViewIndex v) { return Compactness2D(labels.View(v)); });
+}
+
+int CentreLabelCount(const Labels& labels) {
+  const cv::Mat centre = labels.View(labels.shape().Centre());
+  std::unordered_set<int> seen(centre.begin<int>(), centre.end<int>());
+  return static_cast<int>(seen.size());
+}
+
+int LabelCount(const Labels& labels) {
+  std::unordered_set<int> seen(labels.data(), labels.data() + labels.size());
+  return static_cast<int>(seen.size());
+}
+
+double EffectiveLabelRatio(const Labels& labels) {
+  const int total = LabelCount(labels);
+  return total > 0 ? static_cast<double>(CentreLabelCount(labels)) / total : 0.0;
+}
+
+std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const LightFieldShape& shape) {
+  if (centre.width() != shape.width || centre.height() != shape.height) {
+    throw Error("disparity is " + std::to_string(centre.width()) + "x" + std::to_string(centre.height()) +
+                " but the views are " + std::to_string(shape.width) + "x" + std::to_string(shape.height));
+  }
+  float max_abs = 0.0f;
+  for (int i = 0; i < shape.width * shape.height; ++i) {
+    if (std::isfinite(centre.data()[i])) max_abs = std::max(max_abs, std::abs(centre.data()[i]));
+  }
+  const ViewIndex c = shape.Centre();
+  const int views = static_cast<int>(shape.Views());
+  std::vector<DisparityMap> out(static_cast<std::size_t>(views));
+  const std::vector<std::int32_t> ones(shape.ViewPixels(), 0);
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    DisparityMap map(shape.width, shape.height);
+    if (view == c) {
+      std::copy(centre.data(), centre.data() + shape.ViewPixels(), map.data());
+    } else {
+      const int du = view.u - c.u, dv = view.v - c.v;
+      std::vector<std::int32_t> hit(shape.ViewPixels());
+      ForwardWarp(ones.data(), centre.data(), shape.width, shape.height, du, dv, hit.data(), map.data());
+      const int reach =
+          static_cast<int>(std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv))))) + 2;
+      FillHoles(hit.data(), map.data(), shape.width, shape.height, du, dv, std::min(reach, 512));
+    }
+    out[static_cast<std::size_t>(cam)] = std::move(map);
+  }
+  return out;
+}
+
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  const LightFieldShape& shape = labels.shape();
+  if (view_disparity.size() != shape.Views()) throw Error("self-similarity: need one disparity map per view");
+  const ViewIndex c = shape.Centre();
+  int max_label = -1;
+  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
+  if (max_label < 0) return 0.0;
+  const std::size_t k_count = static_cast<std::size_t>(max_label) + 1;
+  // Projected centroid sums per view and label: x, y, n.
+  const int views = static_cast<int>(shape.Views());
+  std::vector<double> sums(static_cast<std::size_t>(views) * k_count * 3, 0.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const double du = view.u - c.u, dv = view.v - c.v;
+    const std::int32_t* l = labels.ViewData(view);
+    const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
+    double* s = sums.data() + static_cast<std::size_t>(cam) * k_count * 3;
+    for (int y = 0; y < shape.height; ++y) {
+      for (int x = 0; x < shape.width; ++x) {
+        const std::int32_t k = l[y * shape.width + x];
+        const float disparity = d.at(y, x);
+        if (k < 0 || !std::isfinite(disparity)) continue;
+        double* entry = s + static_cast<std::size_t>(k) * 3;
+        entry[0] += x + du * disparity;  // Eq. 9 with the project's sign
+        entry[1] += y + dv * disparity;
+        entry[2] += 1.0;
+      }
+    }
+  }
+  const int centre_cam = CameraNumber(c, shape.nu);
+  double total = 0.0;
+  int counted = 0;
+  for (std::size_t k = 0; k < k_count; ++k) {
+    const double* ref = sums.data() + (static_cast<std::size_t>(centre_cam) * k_count + k) * 3;
+    if (ref[2] <= 0) continue;
+    const double cx = ref[0] / ref[2], cy = ref[1] / ref[2];
+    double sum = 0.0;
+    int present = 0;
+    for (int cam = 0; cam < views; ++cam) {
+      if (cam == centre_cam) continue;
+      const double* e = sums.data() + (static_cast<std::size_t>(cam) * k_count + k) * 3;
+      if (e[2] <= 0) continue;
+      sum += std::hypot(e[0] / e[2] - cx, e[1] / e[2] - cy);
+      ++present;
+    }
+    if (present == 0) continue;
+    total += sum / present;
+    ++counted;
+  }
+  return counted > 0 ? total / counted : 0.0;
+}
+
+double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity,
+                      const std::vector<DisparityMap>& view_disparity) {
+  const LightFieldShape& shape = labels.shape();
+  if (view_disparity.size() != shape.Views()) throw Error("labels per pixel: need one disparity map per view");
+  const ViewIndex c = shape.Centre();
+  const std::int32_t* centre = labels.ViewData(c);
+  const int w = shape.width, h = shape.height;
+  double total = 0.0;
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : total)
+  for (int y0 = 0; y0 < h; ++y0) {
+    std::vector<std::int32_t> window, foreign;
+    for (int x0 = 0; x0 < w; ++x0) {
+      const float d = centre_disparity.at(y0, x0);
+      if (!std::isfinite(d)) continue;
+      window.clear();
+      foreign.clear();
+      for (int y = std::max(0, y0 - 1); y <= std::min(h - 1, y0 + 1); ++y) {
+        for (int x = std::max(0, x0 - 1); x <= std::min(w - 1, x0 + 1); ++x) window.push_back(centre[y * w + x]);
+      }
+      for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+        const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+        if (view == c) continue;
+        const int x = static_cast<int>(std::lround(x0 - (view.u - c.u) * d));
+        const int y = static_cast<int>(std::lround(y0 - (view.v - c.v) * d));
+        if (x < 0 || y < 0 || x >= w || y >= h) continue;
+        if (std::abs(view_disparity[static_cast<std::size_t>(cam)].at(y, x) - d) > 0.5f) continue;  // occluded
+        const std::int32_t k = labels.ViewData(view)[y * w + x];
+        if (std::find(window.begin(), window.end(), k) != window.end()) continue;
+        if (std::find(foreign.begin(), foreign.end(), k) == foreign.end()) foreign.push_back(k);
+      }
+      total += static_cast<double>(foreign.size());
+    }
+  }
+  return 1.0 + total / (static_cast<double>(w) * h);
+}
+
+}  // namespace lfsp::segment

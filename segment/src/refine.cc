@@ -1,0 +1,308 @@
+#include "refine.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <opencv2/core/mat.hpp>
+
+#include "planes.h"
+
+namespace lfsp::segment {
+namespace {
+
+// Running sums of one 2D slice (label k in one view): mean colour and centroid follow label moves incrementally.
+struct Slice {
+  double l = 0, a = 0, b = 0, x = 0, y = 0;
+  int n = 0;
+};
+
+// The shared state of one refinement, with views addressed by camera number.
+class Refiner {
+ public:
+  Refiner(const RefineInputs& inputs, const LfspParams& params, Labels& labels, std::vector<Plane>& planes)
+      : in_(inputs),
+        p_(params),
+        shape_(labels.shape()),
+        labels_(labels),
+        planes_(planes),
+        width_(shape_.width),
+        height_(shape_.height),
+        view_pixels_(shape_.ViewPixels()),
+        centre_(shape_.Centre()),
+        slices_(shape_.Views() * static_cast<std::size_t>(inputs.superpixels)),
+        active_(shape_.Views() * view_pixels_, 1) {
+    inv_colour_ = 1.0 / (p_.colour_scale * p_.colour_scale);
+    inv_size_ = 1.0 / (static_cast<double>(p_.size) * p_.size);
+    inv_range_ = 1.0 / in_.disparity_range;
+    boundary_weight_ = p_.lambda_b / 8.0;
+    InitialiseSlices();
+  }
+
+  // One pass of label moves over the active boundary rays of every view; returns the number of moves.
+  long long Sweep() {
+    long long moves = 0;
+    for (int phase = 0; phase < 4; ++phase) {
+      std::vector<int> cams;
+      for (int v = 0; v < shape_.nv; ++v) {
+        for (int u = 0; u < shape_.nu; ++u) {
+          if ((u % 2) + 2 * (v % 2) == phase) cams.push_back(v * shape_.nu + u);
+        }
+      }
+      const int count = static_cast<int>(cams.size());
+#pragma omp parallel for schedule(dynamic) reduction(+ : moves)
+      for (int i = 0; i < count; ++i) moves += SweepView(cams[static_cast<std::size_t>(i)]);
+    }
+    return moves;
+  }
+
+  cv::Mat CentreLabels() { return labels_.View(centre_); }
+
+ private:
+  std::int32_t* ViewLabels(int cam) { return labels_.data() + static_cast<std::size_t>(cam) * view_pixels_; }
+  Slice& SliceOf(int cam, int k) {
+    return slices_[static_cast<std::size_t>(cam) * static_cast<std::size_t>(in_.superpixels) +
+                   static_cast<std::size_t>(k)];
+  }
+  const float* LabOf(int cam, std::size_t index) const {
+    return in_.lab + (static_cast<std::size_t>(cam) * view_pixels_ + index) * 3;
+  }
+
+  void InitialiseSlices() {
+    const int views = static_cast<int>(shape_.Views());
+#pragma omp parallel for schedule(dynamic)
+    for (int cam = 0; cam < views; ++cam) {
+      const std::int32_t* labels = ViewLabels(cam);
+      for (int y = 0; y < height_; ++y) {
+        for (int x = 0; x < width_; ++x) {
+          const std::size_t index =
+              static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+          Add(SliceOf(cam, labels[index]), LabOf(cam, index), x, y, 1);
+        }
+      }
+    }
+  }
+
+  static void Add(Slice& s, const float* lab, int x, int y, int sign) {
+    s.l += sign * lab[0];
+    s.a += sign * lab[1];
+    s.b += sign * lab[2];
+    s.x += sign * x;
+    s.y += sign * y;
+    s.n += sign;
+  }
+
+  // Rounded disparity of the ray (x, y) of view offset (du, dv) if it belongs to label k (Eq. 2).
+  int RoundedDisparity(int k, int x, int y, int du, int dv) const {
+    const Plane& plane = planes_[static_cast<std::size_t>(k)];
+    const double denominator = 1.0 - plane.a * du - plane.b * dv;
+    const double numerator = plane.a * x + plane.b * y + plane.c;
+    const double d = std::abs(denominator) > 0.1 ? numerator / denominator : numerator;
+    return static_cast<int>(std::lround(d));
+  }
+
+  // Would removing the ray at (x, y) split its label's slice? True if the label appears in more than one separate
+  // run around the 8-ring (corners count only when 4-connected to the ring through an edge neighbour).
+  bool IsArticulation(const std::int32_t* labels, int x, int y, std::int32_t own) const {
+    static constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}};
+    bool in[8];
+    for (int i = 0; i < 8; ++i) {
+      const int nx = x + kRing[i][0], ny = y + kRing[i][1];
+      in[i] = nx >= 0 && ny >= 0 && nx < width_ && ny < height_ && labels[ny * width_ + nx] == own;
+    }
+    for (int i = 0; i < 8; i += 2) {  // corners: keep only if an adjacent edge cell is in
+      if (in[i] && !in[(i + 7) % 8] && !in[(i + 1) % 8]) in[i] = false;
+    }
+    int runs = 0;
+    for (int i = 0; i < 8; ++i) {
+      if (in[i] && !in[(i + 7) % 8]) ++runs;
+    }
+    return runs > 1;
+  }
+
+  // Boundary term (Eq. 7) of label k for the ray (x, y) of view (u, v), before the lambda_b / 8 factor: spatial
+  // neighbours in this view, angular neighbours at the candidate's rounded disparity in the 8 neighbouring views,
+  // and the mixed ones around them.
+  // Stops early, returning a value above `limit`, once the cost exceeds it.
+  double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, int rounded, double limit) {
+    double cost = 0.0;
+    for (int oy = -1; oy <= 1; ++oy) {
+      const int ny = y + oy;
+      if (ny < 0 || ny >= height_) continue;
+      for (int ox = -1; ox <= 1; ++ox) {
+        const int nx = x + ox;
+        if ((ox == 0 && oy == 0) || nx < 0 || nx >= width_) continue;
+        if (own_view[ny * width_ + nx] != k) cost += p_.pen_spatial;
+      }
+    }
+    for (int b = -1; b <= 1; ++b) {
+      const int nv = v + b;
+      if (nv < 0 || nv >= shape_.nv) continue;
+      for (int a = -1; a <= 1; ++a) {
+        const int nu = u + a;
+        if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
+        const std::int32_t* other = ViewLabels(nv * shape_.nu + nu);
+        // Moving one view step along +u shifts a point by -d (DESIGN.md convention).
+        const int cx = x - a * rounded, cy = y - b * rounded;
+        for (int oy = -1; oy <= 1; ++oy) {
+          const int ny = cy + oy;
+          if (ny < 0 || ny >= height_) continue;
+          for (int ox = -1; ox <= 1; ++ox) {
+            const int nx = cx + ox;
+            if (nx < 0 || nx >= width_) continue;
+            if (other[ny * width_ + nx] != k) cost += (ox == 0 && oy == 0) ? p_.pen_angular : p_.pen_mixed;
+          }
+        }
+        if (cost > limit) return cost;
+      }
+    }
+    return cost;
+  }
+
+  // The energy of the ray with label k; once it is known to exceed `limit` it returns early (a value > limit).
+  double Cost(int cam, int u, int v, const std::int32_t* own_view, int x, int y, std::size_t index, int k, bool centre,
+              double limit) {
+    const Slice& s = SliceOf(cam, k);
+    const double inv_n = 1.0 / s.n;
+    const float* lab = LabOf(cam, index);
+    const double dl = lab[0] - s.l * inv_n, da = lab[1] - s.a * inv_n, db = lab[2] - s.b * inv_n;
+    const double dx = x - s.x * inv_n, dy = y - s.y * inv_n;
+    double cost = (dl * dl + da * da + db * db) * inv_colour_ + p_.lambda_p * (dx * dx + dy * dy) * inv_size_;
+    const int du = u - centre_.u, dv = v - centre_.v;
+    if (centre) {
+      const float d = in_.centre_disparity[index];
+      if (std::isfinite(d)) {
+        const double e = (d - planes_[static_cast<std::size_t>(k)].AtCentre(x, y)) * inv_range_;
+        cost += p_.lambda_d * e * e;
+      }
+    }
+    if (cost > limit) return cost;
+    const double boundary_limit =
+        boundary_weight_ > 0.0 ? (limit - cost) / boundary_weight_ : std::numeric_limits<double>::infinity();
+    cost += boundary_weight_ * BoundaryCost(own_view, u, v, x, y, k, RoundedDisparity(k, x, y, du, dv), boundary_limit);
+    return cost;
+  }
+
+  // Wakes the rays whose energy depends on the ray (x, y) of view (u, v): its spatial 3x3 and, for the given
+  // rounded disparity, the 3x3 blocks around its angular neighbours. Flags of other views may be set by several
+  // threads at once, so they are written atomically.
+  void Wake(int u, int v, int x, int y, int rounded) {
+    for (int b = -1; b <= 1; ++b) {
+      const int nv = v + b;
+      if (nv < 0 || nv >= shape_.nv) continue;
+      for (int a = -1; a <= 1; ++a) {
+        const int nu = u + a;
+        if (nu < 0 || nu >= shape_.nu) continue;
+        std::uint8_t* flags = active_.data() + static_cast<std::size_t>(nv * shape_.nu + nu) * view_pixels_;
+        // A ray q of view (u+a, v+b) sees this ray as its angular neighbour when q sits where this ray's scene point
+        // appears there, at (x - a d, y - b d).
+        const int cx = x - a * rounded, cy = y - b * rounded;
+        for (int oy = -1; oy <= 1; ++oy) {
+          const int ny = cy + oy;
+          if (ny < 0 || ny >= height_) continue;
+          for (int ox = -1; ox <= 1; ++ox) {
+            const int nx = cx + ox;
+            if (nx < 0 || nx >= width_) continue;
+            __atomic_store_n(flags + ny * width_ + nx, std::uint8_t{1}, __ATOMIC_RELAXED);
+          }
+        }
+      }
+    }
+  }
+
+  long long SweepView(int cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape_.nu);
+    const int u = view.u, v = view.v;
+    const bool centre = view == centre_;
+    const int du = u - centre_.u, dv = v - centre_.v;
+    std::int32_t* labels = ViewLabels(cam);
+    std::uint8_t* flags = active_.data() + static_cast<std::size_t>(cam) * view_pixels_;
+    long long moves = 0;
+    for (int y = 0; y < height_; ++y) {
+      for (int x = 0; x < width_; ++x) {
+        const std::size_t index =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+        if (__atomic_load_n(flags + index, __ATOMIC_RELAXED) == 0) continue;
+        __atomic_store_n(flags + index, std::uint8_t{0}, __ATOMIC_RELAXED);
+        const std::int32_t own = labels[index];
+        std::array<std::int32_t, 5> candidates{own, own, own, own, own};
+        int count = 1;
+        const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+        for (const auto& n : neighbours) {
+          if (n[0] < 0 || n[1] < 0 || n[0] >= width_ || n[1] >= height_) continue;
+          const std::int32_t label = labels[n[1] * width_ + n[0]];
+          if (std::find(candidates.begin(), candidates.begin() + count, label) == candidates.begin() + count) {
+            candidates[static_cast<std::size_t>(count++)] = label;
+          }
+        }
+        if (count == 1) continue;                          // interior ray
+        if (centre && SliceOf(cam, own).n <= 1) continue;  // keep every label in the centre view (ELR = 1)
+        if (IsArticulation(labels, x, y, own)) continue;   // keep the slice connected
+        std::int32_t best = own;
+        double best_cost = Cost(cam, u, v, labels, x, y, index, own, centre, std::numeric_limits<double>::infinity());
+        for (int i = 1; i < count; ++i) {
+          const std::int32_t k = candidates[static_cast<std::size_t>(i)];
+          const double cost = Cost(cam, u, v, labels, x, y, index, k, centre, best_cost);
+          if (cost < best_cost) {
+            best_cost = cost;
+            best = k;
+          }
+        }
+        if (best == own) continue;
+        const float* lab = LabOf(cam, index);
+        Add(SliceOf(cam, own), lab, x, y, -1);
+        Add(SliceOf(cam, best), lab, x, y, +1);
+        labels[index] = best;
+        ++moves;
+        const int rounded_old = RoundedDisparity(own, x, y, du, dv);
+        const int rounded_new = RoundedDisparity(best, x, y, du, dv);
+        Wake(u, v, x, y, rounded_old);
+        if (rounded_new != rounded_old) Wake(u, v, x, y, rounded_new);
+      }
+    }
+    return moves;
+  }
+
+  const RefineInputs& in_;
+  const LfspParams& p_;
+  const LightFieldShape shape_;
+  Labels& labels_;
+  std::vector<Plane>& planes_;
+  const int width_;
+  const int height_;
+  const std::size_t view_pixels_;
+  const ViewIndex centre_;
+  std::vector<Slice> slices_;
+  std::vector<std::uint8_t> active_;
+  double inv_colour_ = 0.0;
+  double inv_size_ = 0.0;
+  double inv_range_ = 0.0;
+  double boundary_weight_ = 0.0;
+};
+
+}  // namespace
+
+RefineReport RefineLabels(const RefineInputs& inputs, const LfspParams& params, Labels& labels,
+                          std::vector<Plane>& planes) {
+  RefineReport report;
+  Refiner refiner(inputs, params, labels, planes);
+  const double rays = static_cast<double>(labels.size());
+  const cv::Mat disparity(labels.shape().height, labels.shape().width, CV_32F,
+                          const_cast<float*>(inputs.centre_disparity));
+  for (int iteration = 0; iteration < params.iterations; ++iteration) {
+    const long long moves = refiner.Sweep();
+    report.moves += moves;
+    report.moves_per_iteration.push_back(moves);
+    ++report.iterations;
+    const BoundaryTypeCounts types =
+        SmoothPlanes(refiner.CentreLabels(), inputs.superpixels, disparity, inputs.disparity_range, params, planes);
+    report.occlusion_boundaries = types.occlusion;
+    report.hinge_boundaries = types.hinge;
+    report.coplanar_boundaries = types.coplanar;
+    if (static_cast<double>(moves) < params.convergence * rays) break;
+  }
+  return report;
+}
+
+}  // namespace lfsp::segment
