@@ -89,7 +89,9 @@ TEST(Render, ViewsWarpToCentreWithGroundTruthDisparity) {
     // hard checker/stripe edges (planes: mean 0.011, p95 0.066 measured; smooth two-horses: mean 0.0004).
     EXPECT_LT(good.mean, 0.015) << "mean abs warp error";
     EXPECT_LT(good.p95, 0.1) << "95th percentile warp error";
-    if (name == "two-horses") EXPECT_LT(good.mean, 0.002);
+    if (name == "two-horses") {
+      EXPECT_LT(good.mean, 0.002);
+    }
     // The check can fail: half a pixel per view step of disparity error must show clearly.
     EXPECT_GT(wrong.mean, 3.0 * good.mean);
   }

@@ -1,0 +1,219 @@
+#include "lfsp/simulate/lenslet_camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::simulate {
+namespace {
+
+constexpr double kHalfSqrt3 = 0.86602540378443864676;
+
+// Values from the real Illum LFR (../shared/data/lytro/illum_demo.LFP) and Illum white-image TXT.
+CameraModel IllumOptics() {
+  CameraModel c;
+  c.model = "ILLUM";
+  c.white_model = "B01";
+  c.firmware = "1.1.0 (31)";
+  c.serial = "B5151500001";
+  c.sensor_serial = "0B320406";
+  c.pixel_pitch = 1.4e-6;
+  c.bits = 10;
+  c.bayer = "grbg";
+  c.black = 64;
+  c.white = 1023;
+  c.response_r = 0.7571942210197449;
+  c.response_b = 0.7217861413955688;
+  c.iso = 122;
+  c.lens_pitch = 2e-5;
+  c.rotation = -0.0008558133849874139;
+  c.scale_x = 1.0;
+  c.scale_y = 1.0003466606140137;
+  c.sensor_offset_x = 1.440673828125e-06;
+  c.sensor_offset_y = 6.261034965515137e-06;
+  c.sensor_offset_z = 3.7e-05;
+  c.row_shift = 0;
+  c.f_number = 2.081897119693584;
+  c.mla_f_number = 2.0;
+  c.focal_length = 0.013886307535794439;
+  c.infinity_lambda = 15.409461826381099;
+  // Three zooms (exit pupil moves with zoom, so the micro-image spacing does), two focus positions each.
+  for (const auto& [zoom, pupil] : {std::pair{-1040, 0.046048875898122787}, {123, 0.060}, {1200, 0.085}})
+    for (int focus : {-300, 814}) c.white_settings.push_back({zoom, focus, pupil});
+  c.capture_setting = 3;  // zoom 123, focus 814, as in the real LFR
+  c.full_well = 9000.0;
+  c.read_noise = 1.2;
+  c.exposure_duration = 0.03998677805066109;
+  c.modulation_exposure_bias = 0.2447252869606018;
+  return c;
+}
+
+CameraModel F01() {
+  CameraModel c;
+  c.name = "f01";
+  c.model = "F01";
+  c.white_model = "F01";
+  c.firmware =
+      "v1.0a119, vv1.0.2, Tue Jun 19 11:53:16 PDT 2012, cceebc3aa8e9dec7d959ea7daaa01d67ce7704af, mods=0, ofw=0";
+  c.serial = "A203100001";
+  c.sensor_serial = "0x0a1b2c3d";
+  c.sensor_width = 3280;
+  c.sensor_height = 3280;
+  c.pixel_pitch = 1.3999999761581417e-06;
+  c.bits = 12;
+  c.bayer = "bggr";
+  c.black = 168;
+  c.white = 4095;
+  // Inverse of the real white-balance gains (r 1, gr 1.1171875, b 1.72265625) relative to green.
+  c.response_r = 1.1171875;
+  c.response_b = 1.1171875 / 1.72265625;
+  c.iso = 200;
+  c.lens_pitch = 1.389859962463379e-05;
+  c.rotation = 0.0019290975760668516;
+  c.scale_x = 1.0;
+  c.scale_y = 1.0004994869232178;
+  c.sensor_offset_x = -2.7138671874999998e-06;
+  c.sensor_offset_y = 5.6601560115814212e-07;
+  c.sensor_offset_z = 2.5000000000000001e-05;
+  c.row_shift = 0;
+  c.f_number = 1.9099999666213989;
+  c.mla_f_number = 1.9;
+  c.focal_length = 0.0064499998092651363;
+  c.infinity_lambda = 7;
+  for (const auto& [zoom, focus] : {std::pair{600, 430}, {981, 582}, {1400, 700}})
+    c.white_settings.push_back({zoom, focus, 10000.0});
+  c.capture_setting = 1;
+  c.full_well = 7000.0;
+  c.read_noise = 2.5;
+  c.exposure_duration = 0.01433531753718853;
+  c.modulation_exposure_bias = -1.1242823600769043;
+  return c;
+}
+
+}  // namespace
+
+double CameraModel::SpacingPixels(const LensSetting& setting) const {
+  return lens_pitch / pixel_pitch * scale_x * (1.0 + sensor_offset_z / setting.exit_pupil);
+}
+
+double CameraModel::DiscRadius(const LensSetting& setting) const {
+  // The micro-image is the image of the main-lens exit pupil: it fills the lens when the f-numbers match, less
+  // when the main lens is stopped down; a small gap separates neighbouring discs.
+  return 0.5 * SpacingPixels(setting) * std::min(1.0, mla_f_number / f_number) * 0.96;
+}
+
+CameraModel CameraPreset(const std::string& name) {
+  if (name == "f01") return F01();
+  if (name == "illum") {
+    CameraModel c = IllumOptics();
+    c.name = "illum";
+    c.sensor_width = 7728;
+    c.sensor_height = 5368;
+    return c;
+  }
+  if (name == "mini-illum") {
+    // Illum optics and micro-lenses on a 1024 x 768 crop: the same decoding problem, 50x fewer pixels.
+    CameraModel c = IllumOptics();
+    c.name = "mini-illum";
+    c.sensor_width = 1024;
+    c.sensor_height = 768;
+    return c;
+  }
+  throw Error("camera '" + name + "': unknown (expected f01, illum or mini-illum)");
+}
+
+std::vector<std::string> CameraPresetNames() { return {"f01", "illum", "mini-illum"}; }
+
+double LensletLattice::RowSpacing() const { return spacing * kHalfSqrt3 * scale_y; }
+
+PixelPosition LensletLattice::Centre(int i, int j) const {
+  const double a = (static_cast<double>(i) + 0.5 * Shift(j)) * spacing;
+  const double b = static_cast<double>(j) * RowSpacing();
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  return {static_cast<float>(origin_x + c * a - s * b), static_cast<float>(origin_y + s * a + c * b)};
+}
+
+void LensletLattice::LocalOffset(double x, double y, int i, int j, double& along, double& across) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const double dx = x - origin_x, dy = y - origin_y;
+  along = c * dx + s * dy - (static_cast<double>(i) + 0.5 * Shift(j)) * spacing;
+  across = -s * dx + c * dy - static_cast<double>(j) * RowSpacing();
+}
+
+void LensletLattice::Nearest(double x, double y, int& i, int& j) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const double dx = x - origin_x, dy = y - origin_y;
+  const double qa = c * dx + s * dy;
+  const double qb = -s * dx + c * dy;
+  const int j0 = static_cast<int>(std::floor(qb / RowSpacing()));
+  double best = 1e300;
+  for (int jj = j0; jj <= j0 + 1; ++jj) {
+    const int ii = static_cast<int>(std::lround(qa / spacing - 0.5 * Shift(jj)));
+    const double ea = qa - (ii + 0.5 * Shift(jj)) * spacing;
+    const double eb = qb - jj * RowSpacing();
+    const double dist = ea * ea + eb * eb;
+    if (dist < best) {
+      best = dist;
+      i = ii;
+      j = jj;
+    }
+  }
+}
+
+LensletLattice MakeLattice(const CameraModel& camera, const LensSetting& setting) {
+  if (camera.sensor_width < 64 || camera.sensor_height < 64) throw Error("camera: sensor must be at least 64x64");
+  LensletLattice lattice;
+  lattice.spacing = camera.SpacingPixels(setting);
+  lattice.scale_y = camera.scale_y;
+  lattice.rotation = camera.rotation;
+  // The lens nearest the optical axis sits at the sensor centre minus the sensor offset.
+  lattice.origin_x = 0.5 * (camera.sensor_width - 1) - camera.sensor_offset_x / camera.pixel_pitch;
+  lattice.origin_y = 0.5 * (camera.sensor_height - 1) - camera.sensor_offset_y / camera.pixel_pitch;
+  lattice.row_shift = camera.row_shift;
+  const double margin = 0.5 * lattice.spacing;
+  auto inside = [&](int i, int j) {
+    const PixelPosition p = lattice.Centre(i, j);
+    return p.x >= margin && p.y >= margin && p.x <= camera.sensor_width - 1 - margin &&
+           p.y <= camera.sensor_height - 1 - margin;
+  };
+  // Columns: the lenses of the axis row that are inside; rows: those whose whole column range is inside.
+  const int reach = static_cast<int>(std::max(camera.sensor_width, camera.sensor_height) / lattice.spacing) + 4;
+  // (both row parities, since shifted rows reach half a pitch further right).
+  auto both_rows = [&](int i) { return inside(i, 0) && inside(i, 1); };
+  int i0 = 0, i1 = 0;
+  while (both_rows(i0 - 1) && i0 > -reach) --i0;
+  while (both_rows(i1 + 1) && i1 < reach) ++i1;
+  auto row_inside = [&](int j) { return inside(i0, j) && inside(i1, j); };
+  int j0 = 0, j1 = 0;
+  while (row_inside(j0 - 1) && j0 > -reach) --j0;
+  while (row_inside(j1 + 1) && j1 < reach) ++j1;
+  // Re-index so that lens (0, 0) is the top-left usable lens.
+  const PixelPosition first = lattice.Centre(i0, j0);
+  lattice.row_shift = ((camera.row_shift + j0) % 2 + 2) % 2;
+  lattice.origin_x = first.x;
+  lattice.origin_y = first.y;
+  // Centre() of (0, 0) now includes a half-pitch shift if row 0 is shifted: compensate along the row.
+  if (lattice.Shift(0) == 1) {
+    lattice.origin_x -= 0.5 * lattice.spacing * std::cos(lattice.rotation);
+    lattice.origin_y -= 0.5 * lattice.spacing * std::sin(lattice.rotation);
+  }
+  lattice.columns = i1 - i0 + 1;
+  lattice.rows = j1 - j0 + 1;
+  return lattice;
+}
+
+DecodedGrid MakeDecodedGrid(const CameraModel& camera, const LensletLattice& lattice) {
+  (void)camera;
+  DecodedGrid grid;
+  int n = static_cast<int>(std::ceil(lattice.spacing));
+  if (n % 2 == 1) ++n;
+  grid.views = n - 1;
+  grid.view_step = lattice.spacing / n;
+  grid.width = static_cast<int>(std::floor((lattice.columns - 1) / kHalfSqrt3)) + 1;
+  grid.height = lattice.rows;
+  return grid;
+}
+
+}  // namespace lfsp::simulate

@@ -1,0 +1,212 @@
+// The lenslet camera model: lattice geometry, micro-image centres in rendered raw images, agreement of the raw
+// capture with the decoded ground truth, and determinism.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "lfsp/core/error.h"
+#include "lfsp/simulate/raw_capture.h"
+
+namespace lfsp::simulate {
+namespace {
+
+TEST(Lattice, NearestInvertsCentreAndDecodedSizesMatchLfToolbox) {
+  for (const auto& name : CameraPresetNames()) {
+    const CameraModel camera = CameraPreset(name);
+    const LensSetting& setting = camera.white_settings[static_cast<std::size_t>(camera.capture_setting)];
+    const LensletLattice lattice = MakeLattice(camera, setting);
+    for (int j = 0; j < lattice.rows; j += 7)
+      for (int i = 0; i < lattice.columns; i += 5) {
+        const PixelPosition c = lattice.Centre(i, j);
+        ASSERT_GE(c.x, 0.5 * lattice.spacing - 1e-3);
+        ASSERT_LE(c.x, camera.sensor_width - 1 - 0.5 * lattice.spacing + 1e-3);
+        int ii = -1, jj = -1;
+        lattice.Nearest(c.x + 0.3, c.y - 0.4, ii, jj);
+        ASSERT_EQ(ii, i);
+        ASSERT_EQ(jj, j);
+      }
+    // Hex neighbours are one spacing apart.
+    const PixelPosition a = lattice.Centre(3, 4), b = lattice.Centre(4, 4), c = lattice.Centre(3, 5);
+    EXPECT_NEAR(std::hypot(b.x - a.x, b.y - a.y), lattice.spacing, 1e-3);
+    const double diag = std::hypot(c.x - a.x, c.y - a.y);
+    EXPECT_NEAR(diag, lattice.spacing * std::hypot(0.5, 0.8660254 * camera.scale_y), 1e-3);
+    const DecodedGrid grid = MakeDecodedGrid(camera, lattice);
+    std::printf("%s: spacing %.4f px, %d x %d lenses, decoded %d x %d views of %d x %d, step %.4f px\n", name.c_str(),
+                lattice.spacing, lattice.columns, lattice.rows, grid.views, grid.views, grid.width, grid.height,
+                grid.view_step);
+    if (name == "illum") {  // LFToolbox: 15x15 views of about 434 x 625
+      EXPECT_EQ(grid.views, 15);
+      EXPECT_NEAR(grid.width, 625, 8);
+      EXPECT_NEAR(grid.height, 434, 4);
+    }
+    if (name == "f01") {  // LFToolbox: 9x9 views of about 380 x 380
+      EXPECT_EQ(grid.views, 9);
+      EXPECT_NEAR(grid.width, 380, 6);
+      EXPECT_NEAR(grid.height, 380, 6);
+    }
+  }
+  EXPECT_THROW(CameraPreset("f02"), Error);
+}
+
+// Sub-pixel peak of one micro-image: least-squares paraboloid through the pixels (each divided by its Bayer
+// channel's response) within `radius` of `centre`, then its stationary point.
+bool FitPeak(const RawCapture& raw, const std::vector<double>& gain, int black, PixelPosition centre, double radius,
+             double& px, double& py) {
+  std::vector<Eigen::Matrix<double, 6, 1>> rows;
+  std::vector<double> values;
+  const int x0 = static_cast<int>(std::floor(centre.x - radius)), x1 = static_cast<int>(std::ceil(centre.x + radius));
+  const int y0 = static_cast<int>(std::floor(centre.y - radius)), y1 = static_cast<int>(std::ceil(centre.y + radius));
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      if (x < 0 || y < 0 || x >= raw.width || y >= raw.height) return false;
+      const double dx = x - centre.x, dy = y - centre.y;
+      if (dx * dx + dy * dy > radius * radius) continue;
+      Eigen::Matrix<double, 6, 1> r;
+      r << 1, dx, dy, dx * dx, dx * dy, dy * dy;
+      rows.push_back(r);
+      const auto k = static_cast<std::size_t>(y * raw.width + x);
+      values.push_back((raw.pixels[k] - black) * gain[k]);
+    }
+  Eigen::MatrixXd a(static_cast<long>(rows.size()), 6);
+  Eigen::VectorXd b(static_cast<long>(rows.size()));
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    a.row(static_cast<long>(k)) = rows[k].transpose();
+    b(static_cast<long>(k)) = values[k];
+  }
+  const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
+  Eigen::Matrix2d h;
+  h << 2 * c(3), c(4), c(4), 2 * c(5);
+  const Eigen::Vector2d peak = h.ldlt().solve(-Eigen::Vector2d(c(1), c(2)));
+  px = centre.x + peak(0);
+  py = centre.y + peak(1);
+  return true;
+}
+
+void CheckMicroImageCentres(const CameraModel& camera, const RawCapture& raw, double max_error, double max_mean) {
+  std::vector<double> gain(raw.pixels.size());
+  for (int y = 0; y < raw.height; ++y)
+    for (int x = 0; x < raw.width; ++x) {
+      const char c = camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))];
+      gain[static_cast<std::size_t>(y * raw.width + x)] = c == 'r'   ? 1.0 / camera.response_r
+                                                          : c == 'b' ? 1.0 / camera.response_b
+                                                                     : 1.0;
+    }
+  const double radius = 0.75 * camera.DiscRadius(raw.setting);
+  double worst = 0, sum = 0;
+  int count = 0;
+  for (int j = 0; j < raw.lattice.rows; ++j)
+    for (int i = 0; i < raw.lattice.columns; ++i) {
+      const PixelPosition c = raw.lattice.Centre(i, j);
+      double px = 0, py = 0;
+      if (!FitPeak(raw, gain, camera.black, c, radius, px, py)) continue;
+      const double e = std::hypot(px - c.x, py - c.y);
+      worst = std::max(worst, e);
+      sum += e;
+      ++count;
+    }
+  std::printf("%s: %d micro-images, peak-to-model-centre error mean %.4f px, max %.4f px\n", camera.name.c_str(), count,
+              sum / count, worst);
+  EXPECT_GT(count, raw.lattice.rows * raw.lattice.columns * 9 / 10);
+  EXPECT_LT(worst, max_error);
+  EXPECT_LT(sum / count, max_mean);
+}
+
+TEST(RawCapture, BrightestPointOfEachMicroImageIsTheModelCentre) {
+  const CameraModel camera = CameraPreset("mini-illum");
+  // A uniformly white scene rendered through the full ray model, without noise: every micro-image peak within 0.1 px.
+  Scene white;
+  white.name = "white";
+  SceneObject wall;
+  wall.texture.colour_a = wall.texture.colour_b = {1.0f, 1.0f, 1.0f};
+  white.objects.push_back(wall);
+  CaptureOptions options;
+  options.noise = false;
+  CheckMicroImageCentres(camera, RenderRawCapture(white, camera, options), 0.1, 0.02);
+  // The white images as written (with noise), at every lens setting: the same within 0.1 px for each micro-image.
+  for (int k = 0; k < static_cast<int>(camera.white_settings.size()); k += 2)
+    CheckMicroImageCentres(camera, RenderWhiteImage(camera, k, 5), 0.1, 0.03);
+}
+
+TEST(RawCapture, RawAgreesWithDecodedGroundTruth) {
+  const CameraModel camera = CameraPreset("mini-illum");
+  const Scene scene = BuiltinScene("two-horses");
+  CaptureOptions options;
+  options.noise = false;
+  const RawCapture raw = RenderRawCapture(scene, camera, options);
+  const RenderedLightField gt = RenderDecodedGroundTruth(scene, camera, options);
+  const auto& shape = gt.light_field.shape();
+  ASSERT_EQ(shape.nu, raw.grid.views);
+  ASSERT_EQ(shape.width, raw.grid.width);
+  const int uc = (shape.nu - 1) / 2;
+  const double R = camera.DiscRadius(raw.setting);
+  const std::array<double, 3> response{camera.response_r, 1.0, camera.response_b};
+  double se = 0;
+  std::size_t n = 0;
+  for (int y = 8; y < raw.height - 8; ++y)
+    for (int x = 8; x < raw.width - 8; ++x) {
+      int i = 0, j = 0;
+      raw.lattice.Nearest(x, y, i, j);
+      if (i < 1 || j < 1 || i >= raw.lattice.columns - 1 || j >= raw.lattice.rows - 1) continue;
+      double along = 0, across = 0;
+      raw.lattice.LocalOffset(x, y, i, j, along, across);
+      const double s = along / raw.grid.view_step, t = across / raw.grid.view_step;
+      const double m = Modulation(camera, raw.lattice, R, x, y, i, j);
+      if (m < 0.3 || std::abs(s - std::round(s)) > 0.25 || std::abs(t - std::round(t)) > 0.25) continue;
+      const int u = uc + static_cast<int>(std::lround(s)), v = uc + static_cast<int>(std::lround(t));
+      const double xd = (i + 0.5 * raw.lattice.Shift(j)) / 0.8660254037844386;
+      const int x0 = static_cast<int>(std::floor(xd));
+      if (x0 + 1 >= shape.width) continue;
+      const int channel = camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'r'   ? 0
+                          : camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'g' ? 1
+                                                                                                 : 2;
+      const double f = xd - x0;
+      const double expected =
+          (1 - f) * gt.light_field.at({u, v}, j, x0, channel) + f * gt.light_field.at({u, v}, j, x0 + 1, channel);
+      const double measured = (raw.pixels[static_cast<std::size_t>(y * raw.width + x)] - camera.black) /
+                              double(camera.white - camera.black) /
+                              (options.exposure * response[static_cast<std::size_t>(channel)] * m);
+      se += (measured - expected) * (measured - expected);
+      ++n;
+    }
+  const double psnr = 10 * std::log10(1.0 / (se / n));
+  std::printf("raw vs decoded ground truth: %zu samples, PSNR %.2f dB\n", n, psnr);
+  EXPECT_GT(n, 50000u);
+  EXPECT_GT(psnr, 35.0);  // residual: quantisation, sub-view angular offsets, spatial interpolation
+}
+
+TEST(RawCapture, DeterministicForASeedAndDifferentForAnother) {
+  const CameraModel camera = CameraPreset("mini-illum");
+  const Scene scene = BuiltinScene("planes");
+  CaptureOptions options;
+  options.seed = 42;
+  options.hot_pixels = 5;
+  const RawCapture a = RenderRawCapture(scene, camera, options);
+  const RawCapture b = RenderRawCapture(scene, camera, options);
+  EXPECT_EQ(a.pixels, b.pixels);
+  ASSERT_EQ(a.hot_pixels.size(), 5u);
+  for (const auto& p : a.hot_pixels) EXPECT_EQ(a.pixels[static_cast<std::size_t>(p[1] * a.width + p[0])], camera.white);
+  options.seed = 43;
+  const RawCapture c = RenderRawCapture(scene, camera, options);
+  EXPECT_NE(a.pixels, c.pixels);
+  // Noise has the modelled size: in a black scene every pixel is black level + read noise.
+  Scene black;
+  black.objects.push_back(SceneObject{});
+  black.objects[0].texture.colour_a = {0.0f, 0.0f, 0.0f};
+  const RawCapture d = RenderRawCapture(black, camera, options);
+  double sum = 0, sum2 = 0;
+  for (const auto p : d.pixels) {
+    sum += p;
+    sum2 += static_cast<double>(p) * p;
+  }
+  const double n = static_cast<double>(d.pixels.size()) - 5;  // minus the hot pixels
+  const double mean = (sum - 5.0 * camera.white) / n;
+  const double sd = std::sqrt((sum2 - 5.0 * camera.white * camera.white) / n - mean * mean);
+  EXPECT_NEAR(mean, camera.black, 0.05);
+  EXPECT_NEAR(sd, std::sqrt(camera.read_noise * camera.read_noise + 1.0 / 12.0), 0.05);  // + rounding to integers
+}
+
+}  // namespace
+}  // namespace lfsp::simulate
