@@ -23,8 +23,8 @@ double WarpError(const LightField& light_field, const DisparityMap& disparity, V
   cv::Mat map_y(shape.height, shape.width, CV_32FC1);
   for (int y = 0; y < shape.height; ++y) {
     for (int x = 0; x < shape.width; ++x) {
-      const PixelPosition p = ProjectFromCentre({static_cast<float>(x), static_cast<float>(y)}, disparity.at(y, x),
-                                                view, centre);
+      const PixelPosition p =
+          ProjectFromCentre({static_cast<float>(x), static_cast<float>(y)}, disparity.at(y, x), view, centre);
       map_x.at<float>(y, x) = p.x;
       map_y.at<float>(y, x) = p.y;
     }

@@ -1,0 +1,128 @@
+#include "lfsp/core/visualize.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp {
+namespace {
+
+float SrgbEncode(float linear) {
+  const float x = std::clamp(linear, 0.0f, 1.0f);
+  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+cv::Mat DisplayRgb8(const cv::Mat& view, Transfer transfer) {
+  cv::Mat rgb;
+  if (view.channels() == 1) {
+    cv::cvtColor(view, rgb, cv::COLOR_GRAY2RGB);
+  } else {
+    rgb = view;
+  }
+  cv::Mat encoded = rgb.clone();
+  if (transfer == Transfer::kLinear) {
+    encoded.forEach<cv::Vec3f>([](cv::Vec3f& pixel, const int*) {
+      for (int c = 0; c < 3; ++c) pixel[c] = SrgbEncode(pixel[c]);
+    });
+  }
+  cv::Mat out;
+  encoded.convertTo(out, CV_8U, 255.0);
+  return out;
+}
+
+cv::Mat ColourMapDisparity(const DisparityMap& disparity, std::optional<DisparityRange> range) {
+  const cv::Mat values = disparity.Mat();
+  if (!range) {
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -lo;
+    for (int i = 0; i < disparity.width() * disparity.height(); ++i) {
+      const float d = disparity.data()[i];
+      if (!std::isfinite(d)) continue;
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+    range = DisparityRange{std::isfinite(lo) ? lo : 0.0f, std::isfinite(hi) ? hi : 1.0f};
+  }
+  const float span = std::max(range->max - range->min, 1e-6f);
+  cv::Mat gray(values.size(), CV_8UC1);
+  cv::Mat invalid(values.size(), CV_8UC1);
+  for (int y = 0; y < values.rows; ++y)
+    for (int x = 0; x < values.cols; ++x) {
+      const float d = values.at<float>(y, x);
+      invalid.at<uchar>(y, x) = std::isfinite(d) ? 0 : 255;
+      const float t = std::isfinite(d) ? std::clamp((d - range->min) / span, 0.0f, 1.0f) : 0.0f;
+      gray.at<uchar>(y, x) = static_cast<uchar>(std::lround(t * 255.0f));
+    }
+  cv::Mat bgr;
+  cv::applyColorMap(gray, bgr, cv::COLORMAP_TURBO);
+  bgr.setTo(cv::Scalar::all(0), invalid);
+  cv::Mat rgb;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  return rgb;
+}
+
+namespace {
+
+template <typename T, typename Source>
+cv::Mat HorizontalEpiOf(const Source& source, int y, int v, int type) {
+  const LightFieldShape& shape = source.shape();
+  if (y < 0 || y >= shape.height || v < 0 || v >= shape.nv) throw Error("horizontal EPI row out of range");
+  cv::Mat epi(shape.nu, shape.width, type);
+  const std::size_t row_bytes = static_cast<std::size_t>(shape.width) * shape.channels * sizeof(T);
+  for (int u = 0; u < shape.nu; ++u) std::memcpy(epi.ptr<T>(u), &source.at({u, v}, y, 0, 0), row_bytes);
+  return epi;
+}
+
+template <typename T, typename Source>
+cv::Mat VerticalEpiOf(const Source& source, int x, int u, int type) {
+  const LightFieldShape& shape = source.shape();
+  if (x < 0 || x >= shape.width || u < 0 || u >= shape.nu) throw Error("vertical EPI column out of range");
+  cv::Mat epi(shape.height, shape.nv, type);
+  for (int v = 0; v < shape.nv; ++v)
+    for (int y = 0; y < shape.height; ++y)
+      std::memcpy(epi.ptr<T>(y) + static_cast<std::size_t>(v) * shape.channels, &source.at({u, v}, y, x, 0),
+                  static_cast<std::size_t>(shape.channels) * sizeof(T));
+  return epi;
+}
+
+}  // namespace
+
+cv::Mat HorizontalEpi(const LightField& light_field, int y, int v) {
+  return HorizontalEpiOf<float>(light_field, y, v, CV_MAKETYPE(CV_32F, light_field.shape().channels));
+}
+cv::Mat VerticalEpi(const LightField& light_field, int x, int u) {
+  return VerticalEpiOf<float>(light_field, x, u, CV_MAKETYPE(CV_32F, light_field.shape().channels));
+}
+cv::Mat HorizontalEpi(const Labels& labels, int y, int v) {
+  return HorizontalEpiOf<std::int32_t>(labels, y, v, CV_32SC1);
+}
+cv::Mat VerticalEpi(const Labels& labels, int x, int u) { return VerticalEpiOf<std::int32_t>(labels, x, u, CV_32SC1); }
+
+cv::Mat DrawLabelBoundaries(const cv::Mat& rgb8, const cv::Mat& labels, cv::Vec3b colour) {
+  if (rgb8.size() != labels.size() || labels.type() != CV_32SC1 || rgb8.type() != CV_8UC3)
+    throw Error("DrawLabelBoundaries: needs an 8-bit RGB image and CV_32SC1 labels of the same size");
+  cv::Mat out = rgb8.clone();
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const int label = labels.at<int>(y, x);
+      const bool right = x + 1 < labels.cols && labels.at<int>(y, x + 1) != label;
+      const bool down = y + 1 < labels.rows && labels.at<int>(y + 1, x) != label;
+      if (right || down) out.at<cv::Vec3b>(y, x) = colour;
+    }
+  return out;
+}
+
+cv::Mat Enlarge(const cv::Mat& image, int factor_x, int factor_y) {
+  cv::Mat out;
+  cv::resize(image, out, cv::Size(image.cols * factor_x, image.rows * factor_y), 0, 0, cv::INTER_NEAREST);
+  return out;
+}
+
+}  // namespace lfsp
