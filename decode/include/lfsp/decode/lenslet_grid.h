@@ -1,0 +1,94 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+#include "lfsp/decode/lytro_metadata.h"
+#include "lfsp/decode/raw_packing.h"
+
+namespace lfsp::decode {
+
+// The hexagonal micro-lens lattice on the sensor, in pixels (pixel centres at integer coordinates, y down):
+//   centre(i, j) = origin + R(rotation) * ((i + shift(j) / 2) * spacing_x, j * spacing_y),
+//   shift(j) = (j + row_shift) mod 2, R(a) = [cos a, -sin a; sin a, cos a].
+// Lens (0, 0) is the top-left lens of the usable grid (every lens 0 <= i < columns, 0 <= j < rows has its whole
+// micro-image, radius spacing_x / 2, on the sensor). This is the simulator's LensletLattice parametrisation, so a
+// fitted grid compares with the truth term by term.
+struct LensletGrid {
+  double spacing_x = 0.0;  // px between neighbouring centres along a lens row
+  double spacing_y = 0.0;  // px between lens rows (about spacing_x * sqrt(3)/2)
+  double rotation = 0.0;   // rad: lens rows run along (cos, sin) in image coordinates
+  double origin_x = 0.0;   // px
+  double origin_y = 0.0;
+  int row_shift = 0;  // rows with (j + row_shift) odd are shifted by half a pitch to the right
+  int columns = 0;
+  int rows = 0;
+  int sensor_width = 0;
+  int sensor_height = 0;
+
+  // Fit quality (zero for a grid that was not fitted).
+  double rms_residual = 0.0;  // px, RMS distance of the inlier centroids from the fitted lattice
+  int lenses_measured = 0;    // micro-images whose centroid was measured
+  int lenses_used = 0;        // inliers of the final fit
+
+  int Shift(int j) const { return ((j + row_shift) % 2 + 2) % 2; }
+  void Centre(double i, int j, double& x, double& y) const;
+  // Sensor position of lattice-frame coordinates (a along the row in lens pitches, b across in rows) plus an offset
+  // (along, across) in pixels in the lattice frame.
+  void SensorPosition(double a, double b, double along, double across, double& x, double& y) const;
+
+  nlohmann::json ToJson() const;
+  // lfsp::Error naming `source` if a field is missing or out of range.
+  static LensletGrid FromJson(const nlohmann::json& json, const std::string& source);
+};
+
+// Where the estimation starts: the camera's description of its micro-lens array.
+struct GridGuess {
+  double spacing = 0.0;   // px along a row (lensPitch / pixelPitch * scaleFactor.x)
+  double scale_y = 1.0;   // row spacing = spacing * sqrt(3)/2 * scale_y
+  double rotation = 0.0;  // rad, in the lattice convention above
+  double axis_x = 0.0;    // px: where the lens nearest the optical axis sits (sensor centre minus sensorOffset)
+  double axis_y = 0.0;
+};
+
+// The guess a camera's metadata gives (devices.mla.* and devices.sensor.pixelPitch) for a sensor of that size.
+// lfsp::Error naming the metadata source if the micro-lens description is missing.
+GridGuess GuessFromMetadata(const LytroMetadata& metadata, int sensor_width, int sensor_height);
+
+struct GridEstimateOptions {
+  double window_radius = 0.4;    // centroid window radius as a fraction of the spacing (stays inside the disc)
+  int centroid_iterations = 5;   // re-centred intensity-weighted centroid iterations per micro-image
+  double min_brightness = 0.3;   // micro-images dimmer than this fraction of the median are not used
+  double outlier_sigmas = 4.0;   // centroids further than this many robust sigmas from the fit are outliers
+  double min_outlier_px = 0.05;  // ... but never call a centroid within this distance an outlier
+};
+
+// One measured micro-image centre, lattice-indexed as in the final grid (indices may be outside the usable range).
+struct MeasuredCentre {
+  int i = 0;
+  int j = 0;
+  double x = 0.0;
+  double y = 0.0;
+  bool inlier = false;
+};
+
+struct GridEstimate {
+  LensletGrid grid;
+  std::vector<MeasuredCentre> centres;
+};
+
+// A white image as one grey float image for grid fitting and devignetting: levels from the raw format, each of the
+// four Bayer phases divided by its own mean (so the sensor's colour response leaves no checkerboard), then scaled so
+// that the 99.9th percentile (the micro-image centres) is 1.
+cv::Mat WhiteImageToGrey(const RawImage& white, const RawFormat& format, const std::string& source);
+
+// Fits the lattice to a grey white image: sub-pixel centroid of every micro-image (re-centred, smoothly windowed,
+// intensity-weighted), then a least-squares fit of spacing x/y, rotation and origin over all of them, grown from the
+// optical axis outwards and robust to outliers (dim vignetted border lenses, defects). lfsp::Error if the image does
+// not show a lattice near the guess.
+GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& guess,
+                                 const GridEstimateOptions& options = {});
+
+}  // namespace lfsp::decode

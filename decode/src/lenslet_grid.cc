@@ -1,0 +1,179 @@
+#include "lfsp/decode/lenslet_grid.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <opencv2/core.hpp>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::decode {
+namespace {
+
+constexpr double kHalfSqrt3 = 0.86602540378443864676;
+
+double RequireNumber(const nlohmann::json& json, const char* key, const std::string& source) {
+  if (!json.contains(key) || !json[key].is_number())
+    throw Error(source + ": lenslet grid field '" + key + "' missing or not a number");
+  return json[key].get<double>();
+}
+
+// The black level and the white-minus-black range of each of the four Bayer phases (index 2 * (y & 1) + (x & 1)),
+// from the per-channel levels of the raw format.
+struct PhaseLevels {
+  std::array<float, 4> black{};
+  std::array<float, 4> scale{};  // 1 / (white - black)
+};
+
+PhaseLevels LevelsOf(const RawFormat& format, const std::string& source) {
+  // Which Bayer channel sits at each phase of the 2x2 tile.
+  static constexpr std::array<std::array<int, 4>, 4> kTiles = {{
+      {0, 1, 2, 3},  // RGGB: r gr / gb b
+      {1, 0, 3, 2},  // GRBG: gr r / b gb
+      {2, 3, 0, 1},  // GBRG: gb b / r gr
+      {3, 2, 1, 0},  // BGGR: b gb / gr r
+  }};
+  const auto& tile = kTiles[static_cast<int>(format.mosaic)];
+  auto pick = [](const BayerValues& values, int channel) {
+    switch (channel) {
+      case 0:
+        return values.r;
+      case 1:
+        return values.gr;
+      case 2:
+        return values.gb;
+      default:
+        return values.b;
+    }
+  };
+  PhaseLevels levels;
+  for (int phase = 0; phase < 4; ++phase) {
+    const double black = pick(format.black, tile[phase]);
+    const double white = pick(format.white, tile[phase]);
+    if (!(white > black)) throw Error(source + ": white level must exceed the black level");
+    levels.black[phase] = static_cast<float>(black);
+    levels.scale[phase] = static_cast<float>(1.0 / (white - black));
+  }
+  return levels;
+}
+
+}  // namespace
+
+void LensletGrid::Centre(double i, int j, double& x, double& y) const {
+  SensorPosition(i + 0.5 * Shift(j), j, 0.0, 0.0, x, y);
+}
+
+void LensletGrid::SensorPosition(double a, double b, double along, double across, double& x, double& y) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const double p = a * spacing_x + along, q = b * spacing_y + across;
+  x = origin_x + c * p - s * q;
+  y = origin_y + s * p + c * q;
+}
+
+nlohmann::json LensletGrid::ToJson() const {
+  return {{"spacing_x", spacing_x},       {"spacing_y", spacing_y},
+          {"rotation", rotation},         {"origin_x", origin_x},
+          {"origin_y", origin_y},         {"row_shift", row_shift},
+          {"columns", columns},           {"rows", rows},
+          {"sensor_width", sensor_width}, {"sensor_height", sensor_height},
+          {"rms_residual", rms_residual}, {"lenses_measured", lenses_measured},
+          {"lenses_used", lenses_used}};
+}
+
+LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string& source) {
+  if (!json.is_object()) throw Error(source + ": lenslet grid is not a JSON object");
+  LensletGrid grid;
+  grid.spacing_x = RequireNumber(json, "spacing_x", source);
+  grid.spacing_y = RequireNumber(json, "spacing_y", source);
+  grid.rotation = RequireNumber(json, "rotation", source);
+  grid.origin_x = RequireNumber(json, "origin_x", source);
+  grid.origin_y = RequireNumber(json, "origin_y", source);
+  grid.row_shift = static_cast<int>(RequireNumber(json, "row_shift", source));
+  grid.columns = static_cast<int>(RequireNumber(json, "columns", source));
+  grid.rows = static_cast<int>(RequireNumber(json, "rows", source));
+  grid.sensor_width = static_cast<int>(RequireNumber(json, "sensor_width", source));
+  grid.sensor_height = static_cast<int>(RequireNumber(json, "sensor_height", source));
+  grid.rms_residual = json.value("rms_residual", 0.0);
+  grid.lenses_measured = json.value("lenses_measured", 0);
+  grid.lenses_used = json.value("lenses_used", 0);
+  if (!(grid.spacing_x > 2.0 && grid.spacing_y > 2.0) || grid.columns < 2 || grid.rows < 2 || grid.sensor_width <= 0 ||
+      grid.sensor_height <= 0 || std::abs(grid.rotation) > 0.5)
+    throw Error(source + ": lenslet grid out of range (spacing > 2 px, at least 2x2 lenses, |rotation| <= 0.5)");
+  return grid;
+}
+
+GridGuess GuessFromMetadata(const LytroMetadata& metadata, int sensor_width, int sensor_height) {
+  const MlaDescription& mla = metadata.RequireMla();
+  if (!(mla.lens_pitch > 0.0 && mla.pixel_pitch > 0.0))
+    throw Error(metadata.source + ": devices.mla.lensPitch and devices.sensor.pixelPitch must be positive");
+  GridGuess guess;
+  guess.spacing = mla.ApproxSpacingPixels() * (mla.scale_x > 0.0 ? mla.scale_x : 1.0);
+  guess.scale_y = mla.scale_y > 0.0 ? mla.scale_y : 1.0;
+  guess.rotation = mla.rotation;
+  guess.axis_x = 0.5 * (sensor_width - 1) - mla.offset_x / mla.pixel_pitch;
+  guess.axis_y = 0.5 * (sensor_height - 1) - mla.offset_y / mla.pixel_pitch;
+  return guess;
+}
+
+cv::Mat WhiteImageToGrey(const RawImage& white, const RawFormat& format, const std::string& source) {
+  if (white.width < 2 || white.height < 2 || white.pixels.size() != white.PixelCount())
+    throw Error(source + ": white image has no pixels or a buffer of the wrong size");
+  const PhaseLevels levels = LevelsOf(format, source);
+  cv::Mat grey(white.height, white.width, CV_32F);
+  // Levels, and the mean of each Bayer phase (the sensor's colour response to the white diffuser).
+  std::array<double, 4> sums{};
+#pragma omp parallel
+  {
+    std::array<double, 4> local{};
+#pragma omp for schedule(static)
+    for (int y = 0; y < white.height; ++y) {
+      const std::uint16_t* in = white.pixels.data() + static_cast<std::size_t>(y) * white.width;
+      float* out = grey.ptr<float>(y);
+      for (int x = 0; x < white.width; ++x) {
+        const int phase = 2 * (y & 1) + (x & 1);
+        const float value = std::max(0.0f, (static_cast<float>(in[x]) - levels.black[phase]) * levels.scale[phase]);
+        out[x] = value;
+        local[phase] += value;
+      }
+    }
+#pragma omp critical
+    for (int phase = 0; phase < 4; ++phase) sums[phase] += local[phase];
+  }
+  std::array<float, 4> gain{};
+  const double mean_all = (sums[0] + sums[1] + sums[2] + sums[3]) / 4.0;
+  for (int phase = 0; phase < 4; ++phase) {
+    if (!(sums[phase] > 0.0)) throw Error(source + ": white image is black in one Bayer channel");
+    gain[phase] = static_cast<float>(mean_all / sums[phase]);
+  }
+  // Histogram of the balanced values for the 99.9th percentile.
+  constexpr int kBins = 4096;
+  std::vector<long long> histogram(kBins, 0);
+  // Levels map to [0, 1] (a little above for pixels past the white level), so balanced values stay below this.
+  const float top = 1.1f * *std::max_element(gain.begin(), gain.end());
+#pragma omp parallel
+  {
+    std::vector<long long> local(kBins, 0);
+#pragma omp for schedule(static)
+    for (int y = 0; y < white.height; ++y) {
+      float* row = grey.ptr<float>(y);
+      for (int x = 0; x < white.width; ++x) {
+        row[x] *= gain[2 * (y & 1) + (x & 1)];
+        ++local[std::min(kBins - 1, static_cast<int>(row[x] / top * kBins))];
+      }
+    }
+#pragma omp critical
+    for (int b = 0; b < kBins; ++b) histogram[b] += local[b];
+  }
+  const long long wanted = static_cast<long long>(0.999 * static_cast<double>(white.PixelCount()));
+  long long count = 0;
+  int bin = 0;
+  while (bin < kBins - 1 && count + histogram[bin] < wanted) count += histogram[bin++];
+  const double percentile = (bin + 1.0) * top / kBins;
+  if (!(percentile > 0.0)) throw Error(source + ": white image is black");
+  grey *= 1.0 / percentile;
+  return grey;
+}
+
+}  // namespace lfsp::decode
