@@ -121,10 +121,18 @@ CameraModel CameraPreset(const std::string& name) {
     c.sensor_height = 768;
     return c;
   }
-  throw Error("camera '" + name + "': unknown (expected f01, illum or mini-illum)");
+  if (name == "mini-f01") {
+    // F01 optics and micro-lenses on a 1280 x 1280 crop (a full F01 raw is 16 MB; this one 2.5 MB).
+    CameraModel c = F01();
+    c.name = "mini-f01";
+    c.sensor_width = 1280;
+    c.sensor_height = 1280;
+    return c;
+  }
+  throw Error("camera '" + name + "': unknown (expected f01, illum, mini-illum or mini-f01)");
 }
 
-std::vector<std::string> CameraPresetNames() { return {"f01", "illum", "mini-illum"}; }
+std::vector<std::string> CameraPresetNames() { return {"f01", "illum", "mini-illum", "mini-f01"}; }
 
 double LensletLattice::RowSpacing() const { return spacing * kHalfSqrt3 * scale_y; }
 

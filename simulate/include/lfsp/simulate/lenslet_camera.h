@@ -66,7 +66,8 @@ struct CameraModel {
   double DiscRadius(const LensSetting& setting) const;     // micro-image radius in pixels (aperture-limited)
 };
 
-// "f01", "illum" or "mini-illum" (Illum optics on a small sensor, for fast tests). lfsp::Error if unknown.
+// "f01", "illum", "mini-illum" or "mini-f01" (Illum / F01 optics on a small sensor, for fast tests and samples).
+// lfsp::Error if unknown.
 CameraModel CameraPreset(const std::string& name);
 std::vector<std::string> CameraPresetNames();
 

@@ -1,0 +1,116 @@
+#include "lfsp/simulate/simulate.h"
+
+#include <chrono>
+
+#include "lfsp/core/error.h"
+#include "lfsp/decode/lfp_container.h"
+#include "lfsp/simulate/lytro_writer.h"
+#include "lfsp/simulate/render.h"
+
+namespace lfsp::simulate {
+namespace {
+
+void WriteText(const std::string& text, const std::filesystem::path& path) {
+  decode::WriteFileBytesAtomic(
+      std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), path);
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::path& out_dir) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = SceneFromSpec(options.scene);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) ThrowFileError(out_dir.string(), "cannot create output folder: " + ec.message());
+  SimulateResult result;
+  nlohmann::json& summary = result.summary;
+  summary["command"] = "simulate";
+  summary["scene"] = scene.name;
+  summary["seed"] = options.seed;
+  const auto range = scene.DisparityRange();
+  summary["scene_disparity_range"] = {range[0], range[1]};
+  WriteText(SceneToJson(scene).dump(2), out_dir / "scene.json");
+  result.files.push_back("scene.json");
+  const BundleWriteOptions bundle_options{options.ground_truth_storage, options.compression_level};
+
+  if (options.ideal_only) {
+    RenderOptions render;
+    render.nu = render.nv = options.views;
+    render.width = options.width;
+    render.height = options.height;
+    render.supersampling = options.supersampling;
+    render.per_view_disparity = false;
+    const auto t0 = std::chrono::steady_clock::now();
+    const RenderedLightField rendered = RenderLightField(scene, render);
+    summary["timings_s"]["render_ideal"] = SecondsSince(t0);
+    WriteBundle(ToBundle(rendered, scene), out_dir / "ideal.h5", bundle_options);
+    result.files.push_back("ideal.h5");
+    summary["ideal"] = {{"views", options.views}, {"width", options.width}, {"height", options.height}};
+  } else {
+    const CameraModel camera = CameraPreset(options.camera);
+    CaptureOptions capture = options.capture;
+    capture.seed = options.seed;
+    summary["camera"] = camera.name;
+    auto t0 = std::chrono::steady_clock::now();
+    const RawCapture raw = RenderRawCapture(scene, camera, capture);
+    summary["timings_s"]["render_raw"] = SecondsSince(t0);
+    const std::string capture_name = CaptureFileName(camera);
+    decode::WriteLfpContainer(BuildCaptureContainer(camera, raw), out_dir / capture_name);
+    result.files.push_back(capture_name);
+
+    if (options.white_images) {
+      t0 = std::chrono::steady_clock::now();
+      std::filesystem::create_directories(out_dir / "whites", ec);
+      if (ec) ThrowFileError((out_dir / "whites").string(), "cannot create folder: " + ec.message());
+      nlohmann::json whites = nlohmann::json::array();
+      for (int k = 0; k < static_cast<int>(camera.white_settings.size()); ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "MOD_%04d.RAW", k);
+        const RawCapture white = RenderWhiteImage(camera, k, options.seed);
+        WriteWhiteImage(camera, white, out_dir / "whites" / name);
+        result.files.push_back(std::filesystem::path("whites") / name);
+        result.files.push_back((std::filesystem::path("whites") / name).replace_extension(".TXT"));
+        whites.push_back({{"file", std::string("whites/") + name},
+                          {"zoomStep", white.setting.zoom_step},
+                          {"focusStep", white.setting.focus_step},
+                          {"spacing_px", white.lattice.spacing},
+                          {"origin_px", {white.lattice.origin_x, white.lattice.origin_y}},
+                          {"matches_capture", k == camera.capture_setting}});
+      }
+      summary["white_images"] = whites;
+      summary["timings_s"]["render_whites"] = SecondsSince(t0);
+    }
+
+    std::filesystem::create_directories(out_dir / "ground_truth", ec);
+    if (ec) ThrowFileError((out_dir / "ground_truth").string(), "cannot create folder: " + ec.message());
+    nlohmann::json geometry = LensletGeometryJson(camera, raw);
+    if (summary.contains("white_images")) geometry["white_images"] = summary["white_images"];
+    WriteText(geometry.dump(2), out_dir / "ground_truth" / "lenslet_geometry.json");
+    result.files.push_back("ground_truth/lenslet_geometry.json");
+    t0 = std::chrono::steady_clock::now();
+    const RenderedLightField gt = RenderDecodedGroundTruth(scene, camera, capture, options.ground_truth_supersampling);
+    summary["timings_s"]["render_ground_truth"] = SecondsSince(t0);
+    WriteBundle(ToBundle(gt, scene), out_dir / "ground_truth" / "decoded.h5", bundle_options);
+    result.files.push_back("ground_truth/decoded.h5");
+    summary["capture"] = {
+        {"file", capture_name},
+        {"sensor", {raw.width, raw.height}},
+        {"lenses", {raw.lattice.columns, raw.lattice.rows}},
+        {"decoded", {{"views", raw.grid.views}, {"width", raw.grid.width}, {"height", raw.grid.height}}},
+        {"exposure", capture.exposure},
+        {"noise", capture.noise},
+        {"hot_pixels", capture.hot_pixels}};
+  }
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& f : result.files) files.push_back(f.generic_string());
+  summary["files"] = files;
+  summary["timings_s"]["total"] = SecondsSince(start);
+  return result;
+}
+
+}  // namespace lfsp::simulate
