@@ -147,6 +147,10 @@ void TranslateLabels(const cv::Mat& in, ImageShift shift, cv::Mat& out) {
 LightField ShearLightField(const LightField& light_field, float disparity, const ShearOptions& options) {
   if (light_field.empty()) throw Error("shear: the light field is empty");
   const LightFieldShape& shape = light_field.shape();
+  // Checked here, as nothing may throw inside the parallel loop below.
+  if (!std::isfinite(disparity)) throw Error("shear: disparity " + std::to_string(disparity) + " is not finite");
+  if (shape.channels < 1 || shape.channels > 4)
+    throw Error("shear: expected 1-4 channels per ray, got " + std::to_string(shape.channels));
   LightField sheared(shape);
   sheared.transfer = light_field.transfer;
   sheared.metadata = light_field.metadata;
@@ -154,24 +158,25 @@ LightField ShearLightField(const LightField& light_field, float disparity, const
   if (with_weights) sheared.EnableWeights(0.0f);
 
   const ViewIndex centre = shape.Centre();
-  cv::Mat ones;
-  for (int v = 0; v < shape.nv; ++v) {
-    for (int u = 0; u < shape.nu; ++u) {
-      const ViewIndex view{u, v};
-      const ImageShift shift = ShearShift(view, centre, disparity);
-      cv::Mat target = sheared.View(view);
-      TranslateImage(light_field.View(view), shift, target, options.interpolation, ShearBorder::kReplicate);
-      if (!with_weights) continue;
-      cv::Mat target_weights = sheared.WeightView(view);
-      if (light_field.HasWeights()) {
-        // WeightView is non-const only; wrap the const data without copying.
-        const cv::Mat source_weights(shape.height, shape.width, CV_32FC1,
-                                     const_cast<float*>(light_field.weights().ViewData(view)));
-        TranslateImage(source_weights, shift, target_weights, ShearInterpolation::kLinear, ShearBorder::kZero);
-      } else {
-        if (ones.empty()) ones = cv::Mat(shape.height, shape.width, CV_32FC1, cv::Scalar(1.0));
-        TranslateImage(ones, shift, target_weights, ShearInterpolation::kLinear, ShearBorder::kZero);
-      }
+  const cv::Mat ones(shape.height, shape.width, CV_32FC1, cv::Scalar(1.0));
+  // One view per thread (TranslateImage's own loop then runs serially): one parallel region for the whole light
+  // field keeps threads busy even when the machine is shared.
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const ImageShift shift = ShearShift(view, centre, disparity);
+    cv::Mat target = sheared.View(view);
+    TranslateImage(light_field.View(view), shift, target, options.interpolation, ShearBorder::kReplicate);
+    if (!with_weights) continue;
+    cv::Mat target_weights = sheared.WeightView(view);
+    if (light_field.HasWeights()) {
+      // WeightView is non-const only; wrap the const data without copying (read only).
+      const cv::Mat source_weights(shape.height, shape.width, CV_32FC1,
+                                   const_cast<float*>(light_field.weights().ViewData(view)));
+      TranslateImage(source_weights, shift, target_weights, ShearInterpolation::kLinear, ShearBorder::kZero);
+    } else {
+      TranslateImage(ones, shift, target_weights, ShearInterpolation::kLinear, ShearBorder::kZero);
     }
   }
   return sheared;
@@ -179,15 +184,16 @@ LightField ShearLightField(const LightField& light_field, float disparity, const
 
 Labels ShearLabels(const Labels& labels, float disparity) {
   if (labels.empty()) throw Error("shear: the labels are empty");
+  if (!std::isfinite(disparity)) throw Error("shear: disparity " + std::to_string(disparity) + " is not finite");
   const LightFieldShape& shape = labels.shape();
   Labels sheared(shape);
   const ViewIndex centre = shape.Centre();
-  for (int v = 0; v < shape.nv; ++v) {
-    for (int u = 0; u < shape.nu; ++u) {
-      const ViewIndex view{u, v};
-      cv::Mat target = sheared.View(view);
-      TranslateLabels(labels.View(view), ShearShift(view, centre, disparity), target);
-    }
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    cv::Mat target = sheared.View(view);
+    TranslateLabels(labels.View(view), ShearShift(view, centre, disparity), target);
   }
   return sheared;
 }

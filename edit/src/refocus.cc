@@ -1,0 +1,262 @@
+#include "lfsp/edit/refocus.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::edit {
+namespace {
+
+// The view's ray weights as a read-only CV_32FC1 header, or an empty Mat when there are none (or they are unused).
+cv::Mat ViewWeights(const LightField& light_field, ViewIndex view, bool use_ray_weights) {
+  if (!use_ray_weights || !light_field.HasWeights()) return {};
+  const LightFieldShape& shape = light_field.shape();
+  // Array4D has no const view wrapper; the header is only read from.
+  return cv::Mat(shape.height, shape.width, CV_32FC1, const_cast<float*>(light_field.weights().ViewData(view)));
+}
+
+void CheckLightField(const LightField& light_field, const char* what) {
+  if (light_field.empty()) throw Error(std::string(what) + ": the light field is empty");
+}
+
+// Divides the weighted sum by the total weight, pixel by pixel; pixels with no weight become 0.
+cv::Mat Normalise(const cv::Mat& sum, const cv::Mat& total, int channels) {
+  cv::Mat out(sum.size(), sum.type());
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < sum.rows; ++y) {
+    const float* s = sum.ptr<float>(y);
+    const float* t = total.ptr<float>(y);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < sum.cols; ++x) {
+      const float inverse = t[x] > 0.0f ? 1.0f / t[x] : 0.0f;
+      for (int c = 0; c < channels; ++c) o[x * channels + c] = s[x * channels + c] * inverse;
+    }
+  }
+  return out;
+}
+
+// A weighted sum of colours and the sum of the weights, per centre-view pixel.
+struct Accumulator {
+  Accumulator(int height, int width, int channels)
+      : sum(height, width, CV_32FC(channels), cv::Scalar::all(0.0)), total(height, width, CV_32FC1, cv::Scalar(0.0)) {}
+  void Add(const Accumulator& other) {
+    sum += other.sum;
+    total += other.total;
+  }
+  cv::Mat sum;
+  cv::Mat total;
+};
+
+}  // namespace
+
+cv::Mat RefocusImage(const LightField& light_field, float disparity, const RefocusOptions& options) {
+  CheckLightField(light_field, "refocus");
+  if (!std::isfinite(disparity)) throw Error("refocus: disparity " + std::to_string(disparity) + " is not finite");
+  const LightFieldShape& shape = light_field.shape();
+  if (shape.channels < 1 || shape.channels > 4)
+    throw Error("refocus: expected 1-4 channels per ray, got " + std::to_string(shape.channels));
+  const int channels = shape.channels;
+  const ViewIndex centre = shape.Centre();
+
+  const cv::Mat ones(shape.height, shape.width, CV_32FC1, cv::Scalar(1.0));
+  // One view per thread, each thread summing into its own accumulator: a single parallel region per image keeps
+  // both cores busy even on a shared machine (TranslateImage's inner loop then runs serially).
+  Accumulator total_accumulator(shape.height, shape.width, channels);
+#pragma omp parallel
+  {
+    Accumulator local(shape.height, shape.width, channels);
+    cv::Mat shifted;
+    cv::Mat shifted_weight;
+#pragma omp for schedule(dynamic)
+    for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+      const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+      const ImageShift shift = ShearShift(view, centre, disparity);
+      TranslateImage(light_field.View(view), shift, shifted, options.interpolation, ShearBorder::kReplicate);
+      // Weights translate with zero outside the view, so rays that fall outside drop out smoothly.
+      const cv::Mat weights = ViewWeights(light_field, view, options.use_ray_weights);
+      TranslateImage(weights.empty() ? ones : weights, shift, shifted_weight, ShearInterpolation::kLinear,
+                     ShearBorder::kZero);
+      for (int y = 0; y < shape.height; ++y) {
+        const float* colour = shifted.ptr<float>(y);
+        const float* weight = shifted_weight.ptr<float>(y);
+        float* s = local.sum.ptr<float>(y);
+        float* t = local.total.ptr<float>(y);
+        for (int x = 0; x < shape.width; ++x) {
+          const float w = weight[x];
+          if (w <= 0.0f) continue;
+          t[x] += w;
+          for (int c = 0; c < channels; ++c) s[x * channels + c] += w * colour[x * channels + c];
+        }
+      }
+    }
+#pragma omp critical(lfsp_edit_refocus_merge)
+    total_accumulator.Add(local);
+  }
+  return Normalise(total_accumulator.sum, total_accumulator.total, channels);
+}
+
+std::vector<cv::Mat> FocalStack(const LightField& light_field, const std::vector<float>& disparities,
+                                const RefocusOptions& options) {
+  std::vector<cv::Mat> stack;
+  stack.reserve(disparities.size());
+  for (const float disparity : disparities) stack.push_back(RefocusImage(light_field, disparity, options));
+  return stack;
+}
+
+std::vector<float> EvenlySpacedDisparities(float min, float max, int count) {
+  if (count < 1) throw Error("focal stack: the number of slices must be at least 1, got " + std::to_string(count));
+  if (!std::isfinite(min) || !std::isfinite(max) || min > max)
+    throw Error("focal stack: disparity range " + std::to_string(min) + " .. " + std::to_string(max) +
+                " is not a finite range with min <= max");
+  if (count == 1) return {0.5f * (min + max)};
+  std::vector<float> disparities(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i)
+    disparities[static_cast<std::size_t>(i)] =
+        min + (max - min) * static_cast<float>(i) / static_cast<float>(count - 1);
+  return disparities;
+}
+
+namespace {
+
+// Per view, the largest disparity that lands on each pixel when every centre pixel is projected into that view
+// (a z-buffer in disparity: larger = nearer). Each centre pixel is splatted onto the 2x2 pixels around its
+// projection so that stretched surfaces leave no gaps.
+void NearestDisparityInView(const DisparityMap& disparity, ViewIndex view, ViewIndex centre, cv::Mat& nearest) {
+  const int width = disparity.width();
+  const int height = disparity.height();
+  nearest.create(height, width, CV_32FC1);
+  nearest.setTo(cv::Scalar(-std::numeric_limits<float>::infinity()));
+  const float du = static_cast<float>(view.u - centre.u);
+  const float dv = static_cast<float>(view.v - centre.v);
+  // Serial on purpose: concurrent max-updates of the same pixel would race.
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float d = disparity.at(y, x);
+      if (!std::isfinite(d)) continue;
+      const float px = static_cast<float>(x) - du * d;
+      const float py = static_cast<float>(y) - dv * d;
+      const int x0 = static_cast<int>(std::floor(px));
+      const int y0 = static_cast<int>(std::floor(py));
+      for (int yy = y0; yy <= y0 + 1; ++yy) {
+        if (yy < 0 || yy >= height) continue;
+        float* row = nearest.ptr<float>(yy);
+        for (int xx = x0; xx <= x0 + 1; ++xx)
+          if (xx >= 0 && xx < width) row[xx] = std::max(row[xx], d);
+      }
+    }
+  }
+}
+
+// Adds, for every centre pixel, the ray of `view` along its disparity line (bilinear), weighted by the ray weight,
+// skipping rays outside the view and, when `nearest` is given, rays hidden by something nearer.
+void AccumulateRaysAlongDisparity(const LightField& light_field, const DisparityMap& disparity, ViewIndex view,
+                                  const cv::Mat& weights, const cv::Mat* nearest, float occlusion_tolerance,
+                                  Accumulator& accumulator) {
+  const LightFieldShape& shape = light_field.shape();
+  const int width = shape.width;
+  const int height = shape.height;
+  const int channels = shape.channels;
+  const ViewIndex centre = shape.Centre();
+  const float* samples = light_field.ViewData(view);
+  const float du = static_cast<float>(view.u - centre.u);
+  const float dv = static_cast<float>(view.v - centre.v);
+  for (int y = 0; y < height; ++y) {
+    float* s = accumulator.sum.ptr<float>(y);
+    float* t = accumulator.total.ptr<float>(y);
+    for (int x = 0; x < width; ++x) {
+      const float d = disparity.at(y, x);
+      if (!std::isfinite(d)) continue;
+      const float px = static_cast<float>(x) - du * d;
+      const float py = static_cast<float>(y) - dv * d;
+      if (!(px >= 0.0f && py >= 0.0f && px <= static_cast<float>(width - 1) && py <= static_cast<float>(height - 1)))
+        continue;
+      if (nearest != nullptr) {
+        const int nx = std::min(width - 1, static_cast<int>(std::lround(px)));
+        const int ny = std::min(height - 1, static_cast<int>(std::lround(py)));
+        if (nearest->at<float>(ny, nx) > d + occlusion_tolerance) continue;
+      }
+      const int x0 = static_cast<int>(px);  // px, py >= 0, so truncation is floor
+      const int y0 = static_cast<int>(py);
+      const int x1 = std::min(x0 + 1, width - 1);
+      const int y1 = std::min(y0 + 1, height - 1);
+      const float fx = px - static_cast<float>(x0);
+      const float fy = py - static_cast<float>(y0);
+      const float w00 = (1.0f - fx) * (1.0f - fy);
+      const float w01 = fx * (1.0f - fy);
+      const float w10 = (1.0f - fx) * fy;
+      const float w11 = fx * fy;
+      float ray_weight = 1.0f;
+      if (!weights.empty())
+        ray_weight = w00 * weights.at<float>(y0, x0) + w01 * weights.at<float>(y0, x1) +
+                     w10 * weights.at<float>(y1, x0) + w11 * weights.at<float>(y1, x1);
+      if (ray_weight <= 0.0f) continue;
+      const std::size_t row0 = static_cast<std::size_t>(y0) * static_cast<std::size_t>(width);
+      const std::size_t row1 = static_cast<std::size_t>(y1) * static_cast<std::size_t>(width);
+      const std::size_t stride = static_cast<std::size_t>(channels);
+      const float* p00 = samples + (row0 + static_cast<std::size_t>(x0)) * stride;
+      const float* p01 = samples + (row0 + static_cast<std::size_t>(x1)) * stride;
+      const float* p10 = samples + (row1 + static_cast<std::size_t>(x0)) * stride;
+      const float* p11 = samples + (row1 + static_cast<std::size_t>(x1)) * stride;
+      t[x] += ray_weight;
+      for (int c = 0; c < channels; ++c)
+        s[x * channels + c] += ray_weight * (w00 * p00[c] + w01 * p01[c] + w10 * p10[c] + w11 * p11[c]);
+    }
+  }
+}
+
+}  // namespace
+
+cv::Mat AllInFocus(const LightField& light_field, const DisparityMap& disparity, const AllInFocusOptions& options) {
+  CheckLightField(light_field, "all-in-focus");
+  const LightFieldShape& shape = light_field.shape();
+  if (disparity.width() != shape.width || disparity.height() != shape.height)
+    throw Error("all-in-focus: the disparity map is " + std::to_string(disparity.width()) + "x" +
+                std::to_string(disparity.height()) + " but the views are " + std::to_string(shape.width) + "x" +
+                std::to_string(shape.height));
+  if (!(options.occlusion_tolerance >= 0.0f))
+    throw Error("all-in-focus: the occlusion tolerance must be >= 0, got " +
+                std::to_string(options.occlusion_tolerance));
+  const int channels = shape.channels;
+  const int width = shape.width;
+  const int height = shape.height;
+  const ViewIndex centre = shape.Centre();
+
+  // One view per thread with per-thread accumulators (see RefocusImage).
+  Accumulator total_accumulator(height, width, channels);
+#pragma omp parallel
+  {
+    Accumulator local(height, width, channels);
+    cv::Mat nearest;
+#pragma omp for schedule(dynamic)
+    for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+      const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+      const bool check_occlusion = options.occlusion_aware && !(view == centre);
+      if (check_occlusion) NearestDisparityInView(disparity, view, centre, nearest);
+      AccumulateRaysAlongDisparity(light_field, disparity, view,
+                                   ViewWeights(light_field, view, options.use_ray_weights),
+                                   check_occlusion ? &nearest : nullptr, options.occlusion_tolerance, local);
+    }
+#pragma omp critical(lfsp_edit_all_in_focus_merge)
+    total_accumulator.Add(local);
+  }
+  const cv::Mat& total = total_accumulator.total;
+
+  // Pixels without any usable ray (non-finite disparity, zero weights) keep the centre view's value.
+  cv::Mat out = Normalise(total_accumulator.sum, total, channels);
+  const cv::Mat centre_view = light_field.View(centre);
+  for (int y = 0; y < height; ++y) {
+    const float* t = total.ptr<float>(y);
+    const float* c_row = centre_view.ptr<float>(y);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < width; ++x)
+      if (!(t[x] > 0.0f))
+        for (int c = 0; c < channels; ++c) o[x * channels + c] = c_row[x * channels + c];
+  }
+  return out;
+}
+
+}  // namespace lfsp::edit
