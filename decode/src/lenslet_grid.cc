@@ -7,6 +7,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "bayer_levels.h"
 #include "lfsp/core/error.h"
 
 namespace lfsp::decode {
@@ -18,45 +19,6 @@ double RequireNumber(const nlohmann::json& json, const char* key, const std::str
   if (!json.contains(key) || !json[key].is_number())
     throw Error(source + ": lenslet grid field '" + key + "' missing or not a number");
   return json[key].get<double>();
-}
-
-// The black level and the white-minus-black range of each of the four Bayer phases (index 2 * (y & 1) + (x & 1)),
-// from the per-channel levels of the raw format.
-struct PhaseLevels {
-  std::array<float, 4> black{};
-  std::array<float, 4> scale{};  // 1 / (white - black)
-};
-
-PhaseLevels LevelsOf(const RawFormat& format, const std::string& source) {
-  // Which Bayer channel sits at each phase of the 2x2 tile.
-  static constexpr std::array<std::array<int, 4>, 4> kTiles = {{
-      {0, 1, 2, 3},  // RGGB: r gr / gb b
-      {1, 0, 3, 2},  // GRBG: gr r / b gb
-      {2, 3, 0, 1},  // GBRG: gb b / r gr
-      {3, 2, 1, 0},  // BGGR: b gb / gr r
-  }};
-  const auto& tile = kTiles[static_cast<int>(format.mosaic)];
-  auto pick = [](const BayerValues& values, int channel) {
-    switch (channel) {
-      case 0:
-        return values.r;
-      case 1:
-        return values.gr;
-      case 2:
-        return values.gb;
-      default:
-        return values.b;
-    }
-  };
-  PhaseLevels levels;
-  for (int phase = 0; phase < 4; ++phase) {
-    const double black = pick(format.black, tile[phase]);
-    const double white = pick(format.white, tile[phase]);
-    if (!(white > black)) throw Error(source + ": white level must exceed the black level");
-    levels.black[phase] = static_cast<float>(black);
-    levels.scale[phase] = static_cast<float>(1.0 / (white - black));
-  }
-  return levels;
 }
 
 }  // namespace

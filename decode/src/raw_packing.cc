@@ -28,6 +28,9 @@ Group GroupOf(RawPacking packing) {
 // Signed loop counters for OpenMP; buffers never exceed 2^62 bytes.
 using Index = std::ptrdiff_t;
 
+// Below this many groups a parallel region costs more than it saves (small tiles, white images in tests, fuzzing).
+constexpr Index kParallelGroups = 1 << 16;
+
 // One group of packed bytes -> group.pixels pixels. `out` always has room for
 // the whole group.
 inline void UnpackGroup12(const std::uint8_t* b, std::uint16_t* out) {
@@ -97,7 +100,7 @@ PackFn PackerOf(RawPacking packing) {
 // group function.
 template <void (*Unpack)(const std::uint8_t*, std::uint16_t*)>
 void UnpackFullGroups(const std::uint8_t* in, std::uint16_t* out, Index groups, Group g) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (groups > kParallelGroups)
   for (Index i = 0; i < groups; ++i) {
     Unpack(in + static_cast<std::size_t>(i) * g.bytes, out + static_cast<std::size_t>(i) * g.pixels);
   }
@@ -200,7 +203,7 @@ std::vector<std::uint8_t> PackRaw(RawPacking packing, std::span<const std::uint1
   const std::size_t full_groups = pixels.size() / g.pixels;
   const PackFn pack = PackerOf(packing);
   const Index groups = static_cast<Index>(full_groups);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (groups > kParallelGroups)
   for (Index i = 0; i < groups; ++i) {
     pack(pixels.data() + static_cast<std::size_t>(i) * g.pixels, packed.data() + static_cast<std::size_t>(i) * g.bytes);
   }

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <string_view>
+
+#include "lfsp/decode/lytro_metadata.h"
+
+namespace lfsp::decode {
+
+// Demosaicking methods compared by the decoder (tests/decode/demosaic_test.cc measures them on the simulator's
+// captures; the decoder defaults to the best):
+//   kBilinear     OpenCV's bilinear interpolation (on 16-bit data)
+//   kEdgeAware    OpenCV's edge-aware method (COLOR_Bayer*2RGB_EA, on 16-bit data)
+//   kGradient     gradient-corrected bilinear (Malvar, He & Cutler 2004; what MATLAB's demosaic and LFToolbox use),
+//                 in float, no quantisation
+enum class DemosaicMethod { kBilinear, kEdgeAware, kGradient };
+std::string_view ToString(DemosaicMethod method);
+DemosaicMethod DemosaicMethodFromString(const std::string& name);  // lfsp::Error on an unknown name
+
+// Demosaics a single-channel float Bayer image (values >= 0, any scale up to `max_value`) into an interleaved RGB
+// float image (CV_32FC3, R first). Parallel.
+cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value = 4.0f);
+
+}  // namespace lfsp::decode

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "lfsp/core/light_field.h"
+#include "lfsp/decode/demosaic.h"
+#include "lfsp/decode/lenslet_grid.h"
+#include "lfsp/decode/lytro_metadata.h"
+#include "lfsp/decode/raw_packing.h"
+
+namespace lfsp::decode {
+
+// What colour processing the decoder applies after devignetting.
+//   kLinear: the white image divides out the sensor's colour response too (colours balanced to the white image's
+//            light), no colour matrix, no gamma: scene-linear RGB, Transfer::kLinear.
+//   kCamera: as the camera intended (LFToolbox v0.6 style): the white image keeps the sensor response
+//            (normalizedResponses), then white-balance gains, colour matrix (ccm), exposure bias
+//            2^modulationExposureBias and sRGB encoding, Transfer::kSrgb.
+enum class ColourMode { kLinear, kCamera };
+std::string_view ToString(ColourMode mode);
+ColourMode ColourModeFromString(const std::string& name);
+
+struct DecodeOptions {
+  DemosaicMethod demosaic = DemosaicMethod::kGradient;
+  ColourMode colour = ColourMode::kCamera;
+  bool correct_hot_pixels = true;
+  // A pixel brighter than all 8 same-colour neighbours by this much (fraction of white - black) is hot.
+  double hot_pixel_margin = 0.2;
+  // Sensor pixels whose white-image value is below this fraction of the micro-image peak carry no usable light:
+  // they are not divided (noise would explode) and their rays get weight ~0.
+  double min_white = 0.05;
+};
+
+// The decoded 4D grid of a lattice, as LFToolbox sizes it: n = even(ceil(spacing)), views = n - 1 (Illum 15, F01 9),
+// one view step = spacing / n sensor pixels in the lattice frame; decoded pixel (x, y) sits at x * sqrt(3)/2 lens
+// pitches along lens row y (hexagonal to rectangular), width = floor((columns - 1) * 2/sqrt(3)) + 1, height = rows.
+struct DecodedGeometry {
+  int views = 0;
+  double view_step = 0.0;
+  int width = 0;
+  int height = 0;
+};
+DecodedGeometry DecodedGeometryFor(const LensletGrid& grid);
+
+struct DecodeReport {
+  std::string demosaic;
+  std::string colour;
+  long hot_pixels_corrected = 0;
+  double output_scale = 1.0;  // the factor that brought the brightest decoded sample to <= 1 (no clipping)
+  std::map<std::string, double> seconds;  // per step
+  nlohmann::json ToJson() const;
+};
+
+// Decodes a raw lenslet capture into a light field (views x views of width x height, RGB, per-ray weights from the
+// white image): levels from both metadata, hot-pixel correction, devignetting by the white image, demosaicking,
+// then ONE interpolation pass from the demosaicked sensor image straight into the 4D grid (each output sample's
+// sensor position comes from the grid model; along each lens row the two nearest micro-lenses are blended, which
+// is the hexagonal-to-rectangular resampling), then colour. Values are scaled so that nothing clips.
+// lfsp::Error (naming the files) on a raw or white buffer of the wrong size, mismatched sensors or missing levels.
+LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const RawImage& white,
+                         const LytroMetadata& white_metadata, const LensletGrid& grid,
+                         const DecodeOptions& options = {}, DecodeReport* report = nullptr);
+
+}  // namespace lfsp::decode

@@ -1,0 +1,395 @@
+#include "lfsp/decode/white_database.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "json_path.h"
+#include "lfsp/core/error.h"
+#include "lfsp/decode/lfp_container.h"
+#include "lfsp/decode/lytro_capture.h"
+
+namespace lfsp::decode {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+bool IsModMetadata(const fs::path& path) {
+  const std::string name = Lower(path.filename().string());
+  return name.rfind("mod_", 0) == 0 && (Lower(path.extension().string()) == ".txt");
+}
+
+bool IsArchive(const fs::path& path) { return Lower(path.filename().string()).rfind("data.c.", 0) == 0; }
+
+// The base name of an archived member: "C:\T1CALIB\MOD_0000.RAW" -> "MOD_0000.RAW".
+std::string MemberBaseName(const std::string& member) {
+  const std::size_t cut = member.find_last_of("\\/");
+  return cut == std::string::npos ? member : member.substr(cut + 1);
+}
+
+std::string StemOf(const std::string& file_name) {
+  const std::size_t dot = file_name.rfind('.');
+  return dot == std::string::npos ? file_name : file_name.substr(0, dot);
+}
+
+double MeanLevel(const RawImage& raw, const RawFormat& format) {
+  const double black = format.black.gr;
+  const double range = format.white.gr - format.black.gr;
+  double sum = 0.0;
+  for (const std::uint16_t v : raw.pixels) sum += v;
+  return raw.pixels.empty() ? 0.0 : (sum / static_cast<double>(raw.pixels.size()) - black) / range;
+}
+
+// Fills the metadata part of an entry; throws lfsp::Error naming the file if a needed field is missing.
+WhiteImageEntry EntryFromMetadata(const LytroMetadata& md, const std::string& where) {
+  WhiteImageEntry e;
+  e.serial = md.serial;
+  e.camera_model = md.camera_model;
+  e.zoom_step = md.RequireZoomStep();
+  e.focus_step = md.RequireFocusStep();
+  if (!md.exposure_duration) throw Error(where + ": metadata field devices.shutter.frameExposureDuration is missing");
+  e.exposure_duration = *md.exposure_duration;
+  const RawFormat& format = md.RequireRawFormat();
+  e.width = format.width;
+  e.height = format.height;
+  e.packing = format.packing;
+  e.dark = md.dark_frame;
+  return e;
+}
+
+void Measure(WhiteImageEntry& e, const RawImage& raw, const LytroMetadata& md) {
+  e.mean_level = MeanLevel(raw, md.RequireRawFormat());
+  if (e.mean_level < kDarkMeanLevel) e.dark = true;
+}
+
+const std::vector<std::uint8_t>* FindMember(const LytroCapture& archive, const std::string& member) {
+  for (const EmbeddedItem& item : archive.items) {
+    if (item.kind == ItemKind::kCalibrationFile && item.name == member && item.present()) {
+      return &archive.container.sections[static_cast<std::size_t>(item.section)].payload;
+    }
+  }
+  return nullptr;
+}
+
+std::string_view AsText(const std::vector<std::uint8_t>& bytes) {
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+void IndexPair(const fs::path& txt, WhiteImageDatabase& db) {
+  fs::path raw;
+  for (const char* ext : {".RAW", ".raw"}) {
+    fs::path candidate = txt;
+    candidate.replace_extension(ext);
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec)) raw = candidate;
+  }
+  if (raw.empty()) {
+    db.skipped.push_back(txt.string() + ": no .RAW beside it");
+    return;
+  }
+  try {
+    const LytroMetadata md = ReadMetadataFile(txt);
+    WhiteImageEntry e = EntryFromMetadata(md, txt.string());
+    e.raw_path = raw;
+    e.metadata_path = txt;
+    e.name = txt.stem().string();
+    Measure(e, ReadWhiteImageRaw(e), md);
+    db.entries.push_back(std::move(e));
+  } catch (const Error& error) {
+    db.skipped.push_back(error.what());
+  }
+}
+
+// Calibration archives: members MOD_####.TXT and MOD_####.RAW, possibly in different volumes.
+void IndexArchives(const std::vector<fs::path>& archives, WhiteImageDatabase& db) {
+  struct Member {
+    fs::path archive;
+    std::string name;
+  };
+  std::map<std::string, Member> raws;  // base name -> where
+  std::vector<std::pair<Member, std::string>> texts;
+  for (const fs::path& path : archives) {
+    try {
+      const LytroCapture archive = OpenLytroCapture(path);
+      for (const EmbeddedItem* item : archive.ItemsOf(ItemKind::kCalibrationFile)) {
+        const std::string base = MemberBaseName(item->name);
+        const std::string lower = Lower(base);
+        if (lower.rfind("mod_", 0) != 0 || !item->present()) continue;
+        if (lower.size() > 4 && lower.substr(lower.size() - 4) == ".raw")
+          raws[Lower(StemOf(base))] = {path, item->name};
+        if (lower.size() > 4 && lower.substr(lower.size() - 4) == ".txt") {
+          texts.push_back(
+              {{path, item->name},
+               std::string(AsText(archive.container.sections[static_cast<std::size_t>(item->section)].payload))});
+        }
+      }
+    } catch (const Error& error) {
+      db.skipped.push_back(error.what());
+    }
+  }
+  // Entries whose raw member sits in the same volume are measured one after the other, so each volume is opened
+  // (and SHA-1 verified) once.
+  std::stable_sort(texts.begin(), texts.end(), [&raws](const auto& a, const auto& b) {
+    const auto ra = raws.find(Lower(StemOf(MemberBaseName(a.first.name))));
+    const auto rb = raws.find(Lower(StemOf(MemberBaseName(b.first.name))));
+    const fs::path pa = ra == raws.end() ? fs::path() : ra->second.archive;
+    const fs::path pb = rb == raws.end() ? fs::path() : rb->second.archive;
+    return pa < pb;
+  });
+  fs::path open_path;
+  std::optional<LytroCapture> open_archive;
+  for (const auto& [member, text] : texts) {
+    const std::string where = member.archive.string() + " " + member.name;
+    const std::string stem = StemOf(MemberBaseName(member.name));
+    const auto raw = raws.find(Lower(stem));
+    if (raw == raws.end()) {
+      db.skipped.push_back(where + ": no MOD .RAW member of the same name in the archives");
+      continue;
+    }
+    try {
+      const LytroMetadata md = ParseMetadataDocument(text, where);
+      WhiteImageEntry e = EntryFromMetadata(md, where);
+      e.metadata_path = member.archive;
+      e.metadata_member = member.name;
+      e.raw_path = raw->second.archive;
+      e.raw_member = raw->second.name;
+      e.name = stem;
+      if (!open_archive || open_path != e.raw_path) {
+        open_archive.reset();  // release the previous volume before reading the next
+        open_archive = OpenLytroCapture(e.raw_path);
+        open_path = e.raw_path;
+      }
+      const std::vector<std::uint8_t>* bytes = FindMember(*open_archive, e.raw_member);
+      if (bytes == nullptr) throw Error(where + ": raw member " + e.raw_member + " vanished");
+      Measure(e, UnpackRawImage(e.packing, *bytes, e.width, e.height, e.raw_path.string() + " " + e.raw_member), md);
+      db.entries.push_back(std::move(e));
+    } catch (const Error& error) {
+      db.skipped.push_back(error.what());
+    }
+  }
+}
+
+void SortEntries(std::vector<WhiteImageEntry>& entries) {
+  std::sort(entries.begin(), entries.end(), [](const WhiteImageEntry& a, const WhiteImageEntry& b) {
+    return std::tie(a.serial, a.zoom_step, a.focus_step, a.exposure_duration, a.name) <
+           std::tie(b.serial, b.zoom_step, b.focus_step, b.exposure_duration, b.name);
+  });
+}
+
+fs::path Relative(const fs::path& path, const fs::path& base) {
+  if (path.empty()) return path;
+  std::error_code ec;
+  const fs::path relative = fs::relative(path, base, ec);
+  return ec || relative.empty() ? path : relative;
+}
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+WhiteImageDatabase BuildWhiteImageDatabase(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw Error(dir.string() + ": not a folder of white images");
+  WhiteImageDatabase db;
+  db.root = dir;
+  std::vector<fs::path> pairs;
+  std::vector<fs::path> archives;
+  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    if (IsModMetadata(it->path())) pairs.push_back(it->path());
+    if (IsArchive(it->path())) archives.push_back(it->path());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::sort(archives.begin(), archives.end());
+  for (const fs::path& txt : pairs) IndexPair(txt, db);
+  IndexArchives(archives, db);
+  if (db.entries.empty()) {
+    std::string why = dir.string() + ": no white image found (looked for MOD_*.TXT + .RAW pairs and data.C.* archives)";
+    if (!db.skipped.empty()) why += "; first problem: " + db.skipped.front();
+    throw Error(why);
+  }
+  SortEntries(db.entries);
+  return db;
+}
+
+nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& db, const fs::path& base) {
+  nlohmann::json entries = nlohmann::json::array();
+  for (const WhiteImageEntry& e : db.entries) {
+    nlohmann::json j = {{"name", e.name},
+                        {"raw", Relative(e.raw_path, base).generic_string()},
+                        {"metadata", Relative(e.metadata_path, base).generic_string()},
+                        {"serial", e.serial},
+                        {"camera_model", e.camera_model},
+                        {"zoom_step", e.zoom_step},
+                        {"focus_step", e.focus_step},
+                        {"exposure_s", e.exposure_duration},
+                        {"width", e.width},
+                        {"height", e.height},
+                        {"bits_per_pixel", BitsPerPixel(e.packing)},
+                        {"mean_level", e.mean_level},
+                        {"dark", e.dark}};
+    if (!e.raw_member.empty()) j["raw_member"] = e.raw_member;
+    if (!e.metadata_member.empty()) j["metadata_member"] = e.metadata_member;
+    entries.push_back(std::move(j));
+  }
+  return {{"lfsp_white_image_database", 1}, {"entries", entries}, {"skipped", db.skipped}};
+}
+
+void WriteWhiteImageDatabase(const WhiteImageDatabase& db, const fs::path& path) {
+  const std::string text = WhiteImageDatabaseJson(db, path.parent_path()).dump(2);
+  WriteFileBytesAtomic(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), path);
+}
+
+WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
+  const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(AsText(bytes));
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string() + ": invalid JSON: " + e.what());
+  }
+  if (!doc.is_object() || !doc.contains("lfsp_white_image_database") || !doc["entries"].is_array()) {
+    throw Error(path.string() + ": not an lfsp white-image database (no lfsp_white_image_database / entries)");
+  }
+  WhiteImageDatabase db;
+  db.root = path.parent_path();
+  const fs::path base = path.parent_path();
+  for (std::size_t i = 0; i < doc["entries"].size(); ++i) {
+    const nlohmann::json& j = doc["entries"][i];
+    const std::string where = path.string() + " entry " + std::to_string(i);
+    WhiteImageEntry e;
+    e.name = RequireString(j, "name", where);
+    e.raw_path = base / RequireString(j, "raw", where);
+    e.metadata_path = base / RequireString(j, "metadata", where);
+    e.raw_member = StringAt(j, "raw_member", where).value_or("");
+    e.metadata_member = StringAt(j, "metadata_member", where).value_or("");
+    e.serial = RequireString(j, "serial", where);
+    e.camera_model = StringAt(j, "camera_model", where).value_or("");
+    e.zoom_step = static_cast<int>(RequireNumber(j, "zoom_step", where));
+    e.focus_step = static_cast<int>(RequireNumber(j, "focus_step", where));
+    e.exposure_duration = RequireNumber(j, "exposure_s", where);
+    e.width = static_cast<int>(RequireNumber(j, "width", where));
+    e.height = static_cast<int>(RequireNumber(j, "height", where));
+    const int bits = static_cast<int>(RequireNumber(j, "bits_per_pixel", where));
+    if (bits == 10) {
+      e.packing = RawPacking::kBits10Illum;
+    } else if (bits == 12) {
+      e.packing = RawPacking::kBits12BigEndian;
+    } else if (bits == 16) {
+      e.packing = RawPacking::kBits16LittleEndian;
+    } else {
+      throw Error(where + ": bits_per_pixel " + std::to_string(bits) + " is not 10, 12 or 16");
+    }
+    e.mean_level = NumberAt(j, "mean_level", where).value_or(0.0);
+    e.dark = BoolAt(j, "dark", where).value_or(false);
+    db.entries.push_back(std::move(e));
+  }
+  if (doc.contains("skipped") && doc["skipped"].is_array()) {
+    for (const auto& s : doc["skipped"]) {
+      if (s.is_string()) db.skipped.push_back(s.get<std::string>());
+    }
+  }
+  SortEntries(db.entries);
+  return db;
+}
+
+WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const fs::path& dir) {
+  const fs::path cache = dir / kWhiteDatabaseFileName;
+  std::error_code ec;
+  if (fs::is_regular_file(cache, ec)) {
+    const auto cache_time = fs::last_write_time(cache, ec);
+    bool fresh = !ec;
+    for (auto it = fs::recursive_directory_iterator(dir, ec); fresh && !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (it->is_regular_file(ec) &&
+          (IsModMetadata(it->path()) || IsArchive(it->path()) || Lower(it->path().extension().string()) == ".raw")) {
+        if (fs::last_write_time(it->path(), ec) > cache_time) fresh = false;
+      }
+    }
+    if (fresh) return ReadWhiteImageDatabase(cache);
+  }
+  return BuildWhiteImageDatabase(dir);
+}
+
+WhiteImageChoice SelectWhiteImage(const WhiteImageDatabase& db, const LytroMetadata& capture) {
+  const int zoom = capture.RequireZoomStep();
+  const int focus = capture.RequireFocusStep();
+  std::vector<const WhiteImageEntry*> candidates;
+  std::vector<std::string> serials;
+  std::size_t usable = 0;
+  for (const WhiteImageEntry& e : db.entries) {
+    if (e.dark) continue;
+    ++usable;
+    if (std::find(serials.begin(), serials.end(), e.serial) == serials.end()) serials.push_back(e.serial);
+    if (capture.serial.empty() || e.serial == capture.serial) candidates.push_back(&e);
+  }
+  if (candidates.empty()) {
+    std::string present;
+    for (const std::string& s : serials) present += (present.empty() ? "" : ", ") + s;
+    throw Error(capture.source + ": no white image for camera serial " + capture.serial + " in " + db.root.string() +
+                " (" + std::to_string(usable) + " white images, serials: " + (present.empty() ? "none" : present) +
+                ")");
+  }
+  const std::size_t serial_matches = candidates.size();
+  const auto keep_nearest = [&candidates](auto distance) {
+    int best = INT32_MAX;
+    for (const WhiteImageEntry* e : candidates) best = std::min(best, distance(*e));
+    std::erase_if(candidates, [&](const WhiteImageEntry* e) { return distance(*e) != best; });
+    return best;
+  };
+  const int zoom_distance = keep_nearest([zoom](const WhiteImageEntry& e) { return std::abs(e.zoom_step - zoom); });
+  const std::size_t at_zoom = candidates.size();
+  const int focus_distance = keep_nearest([focus](const WhiteImageEntry& e) { return std::abs(e.focus_step - focus); });
+  const std::size_t at_focus = candidates.size();
+  std::sort(candidates.begin(), candidates.end(), [](const WhiteImageEntry* a, const WhiteImageEntry* b) {
+    if (a->exposure_duration != b->exposure_duration) return a->exposure_duration > b->exposure_duration;
+    return a->name < b->name;
+  });
+  const WhiteImageEntry& chosen = *candidates.front();
+  std::ostringstream why;
+  why << chosen.name << ": ";
+  if (capture.serial.empty()) {
+    why << "the capture has no serial number, so all " << serial_matches << " white images were considered; ";
+  } else {
+    why << "camera serial " << capture.serial << " (" << serial_matches << " of " << usable << " usable"
+        << " white images); ";
+  }
+  why << "zoom step " << chosen.zoom_step << " nearest to the capture's " << zoom << " (off by " << zoom_distance
+      << "); focus step " << chosen.focus_step << " nearest to " << focus << " among " << at_zoom
+      << " at that zoom (off by " << focus_distance << ")";
+  if (at_focus > 1) why << "; longest exposure (" << Format(chosen.exposure_duration) << " s) of " << at_focus;
+  return {&chosen, why.str()};
+}
+
+LytroMetadata ReadWhiteImageMetadata(const WhiteImageEntry& entry) {
+  if (entry.metadata_member.empty()) return ReadMetadataFile(entry.metadata_path);
+  const LytroCapture archive = OpenLytroCapture(entry.metadata_path);
+  const std::vector<std::uint8_t>* text = FindMember(archive, entry.metadata_member);
+  if (text == nullptr) throw Error(entry.metadata_path.string() + ": no member " + entry.metadata_member);
+  return ParseMetadataDocument(AsText(*text), entry.metadata_path.string() + " " + entry.metadata_member);
+}
+
+RawImage ReadWhiteImageRaw(const WhiteImageEntry& entry) {
+  if (entry.raw_member.empty()) {
+    const std::vector<std::uint8_t> bytes = ReadFileBytes(entry.raw_path);
+    return UnpackRawImage(entry.packing, bytes, entry.width, entry.height, entry.raw_path.string());
+  }
+  const LytroCapture archive = OpenLytroCapture(entry.raw_path);
+  const std::vector<std::uint8_t>* bytes = FindMember(archive, entry.raw_member);
+  if (bytes == nullptr) throw Error(entry.raw_path.string() + ": no member " + entry.raw_member);
+  return UnpackRawImage(entry.packing, *bytes, entry.width, entry.height,
+                        entry.raw_path.string() + " " + entry.raw_member);
+}
+
+}  // namespace lfsp::decode

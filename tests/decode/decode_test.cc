@@ -1,0 +1,330 @@
+// Decoding the simulator's lenslet captures against its ideal light field on the same decoded grid (issue 4):
+// grid model = the true lattice, PSNR >= 30 dB on the inner views of a noise-free capture, no more energy at the
+// hexagonal row-shift frequency than the ground truth, hot pixels removed, demosaic methods compared, bad input.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfsp/core/error.h"
+#include "lfsp/decode/lenslet_decoder.h"
+#include "lfsp/decode/lenslet_grid.h"
+#include "lfsp/simulate/lytro_writer.h"
+#include "lfsp/simulate/raw_capture.h"
+#include "lfsp/simulate/scene.h"
+
+namespace lfsp::decode {
+namespace {
+
+RawImage ToRawImage(const simulate::RawCapture& capture) {
+  RawImage raw;
+  raw.width = capture.width;
+  raw.height = capture.height;
+  raw.pixels = capture.pixels;
+  return raw;
+}
+
+// One simulated camera shot: capture, white image at the capture's lens setting, metadata in the real schemas,
+// ground truth.
+struct Shot {
+  simulate::CameraModel camera;
+  simulate::RawCapture capture;
+  simulate::RawCapture white;
+  LytroMetadata capture_metadata;
+  LytroMetadata white_metadata;
+  simulate::RenderedLightField truth;
+};
+
+// Scales every texture period of a scene description (textures are in units of the image size).
+void ScalePeriods(nlohmann::json& json, double factor) {
+  if (json.is_object()) {
+    for (auto& [key, value] : json.items()) {
+      if (key == "period" && value.is_number())
+        value = value.get<double>() * factor;
+      else
+        ScalePeriods(value, factor);
+    }
+  } else if (json.is_array()) {
+    for (auto& value : json) ScalePeriods(value, factor);
+  }
+}
+
+// The built-in "planes" scene with its texture detail, in pixels of a view, as it is on a full-size Illum
+// (625 px wide views): the mini-illum sensor gives 80 px wide views, on which the built-in textures would be
+// finer than the decoded sampling can carry (a 1-2-1 blur of the truth alone is then below 25 dB).
+simulate::Scene PlanesAtIllumScale(const simulate::CameraModel& camera) {
+  nlohmann::json json = simulate::SceneToJson(simulate::BuiltinScene("planes"));
+  const simulate::DecodedGrid grid =
+      simulate::MakeDecodedGrid(camera, simulate::MakeLattice(camera, camera.white_settings[camera.capture_setting]));
+  ScalePeriods(json, 625.0 / grid.width);
+  return simulate::SceneFromJson(json);
+}
+
+Shot Simulate(const std::string& camera_name, const simulate::CaptureOptions& options, bool with_truth = true) {
+  Shot shot;
+  shot.camera = simulate::CameraPreset(camera_name);
+  const simulate::Scene scene = PlanesAtIllumScale(shot.camera);
+  shot.capture = simulate::RenderRawCapture(scene, shot.camera, options);
+  shot.white = simulate::RenderWhiteImage(shot.camera, shot.camera.capture_setting, 5);
+  shot.capture_metadata = ParseFrameMetadata(simulate::FrameMetadata(shot.camera, shot.capture),
+                                             simulate::PrivateMetadata(shot.camera), "capture");
+  shot.white_metadata =
+      ParseMetadataDocument(simulate::WhiteImageMetadata(shot.camera, shot.white).dump(), "MOD_0003.TXT");
+  if (with_truth) shot.truth = simulate::RenderDecodedGroundTruth(scene, shot.camera, options);
+  return shot;
+}
+
+LensletGrid FitGrid(const Shot& shot) {
+  const RawImage white = ToRawImage(shot.white);
+  return EstimateLensletGrid(WhiteImageToGrey(white, shot.white_metadata.RequireRawFormat(), "white"),
+                             GuessFromMetadata(shot.white_metadata, white.width, white.height))
+      .grid;
+}
+
+LightField Decode(const Shot& shot, const LensletGrid& grid, DecodeOptions options, DecodeReport* report = nullptr) {
+  options.colour = ColourMode::kLinear;
+  return DecodeLenslet(ToRawImage(shot.capture), shot.capture_metadata, ToRawImage(shot.white), shot.white_metadata,
+                       grid, options, report);
+}
+
+// PSNR of the inner views (|u - uc|, |v - vc| <= reach) away from a 2-pixel border, after the one global gain that
+// best maps the decoded values onto the truth (the decoder's exposure normalisation is a free scale).
+struct Quality {
+  double psnr = 0.0;
+  double gain = 0.0;
+};
+
+Quality InnerViewPsnr(const LightField& decoded, const LightField& truth, int reach) {
+  const LightFieldShape& shape = truth.shape();
+  const ViewIndex centre = shape.Centre();
+  auto each = [&](auto&& visit) {
+    for (int v = centre.v - reach; v <= centre.v + reach; ++v)
+      for (int u = centre.u - reach; u <= centre.u + reach; ++u)
+        for (int y = 2; y < shape.height - 2; ++y)
+          for (int x = 2; x < shape.width - 2; ++x)
+            for (int c = 0; c < 3; ++c) visit(decoded.at({u, v}, y, x, c), truth.at({u, v}, y, x, c));
+  };
+  double dot = 0.0, norm = 0.0;
+  each([&](float d, float t) {
+    dot += static_cast<double>(d) * t;
+    norm += static_cast<double>(d) * d;
+  });
+  Quality quality;
+  quality.gain = dot / norm;
+  double squared = 0.0;
+  long count = 0;
+  each([&](float d, float t) {
+    const double e = quality.gain * d - t;
+    squared += e * e;
+    ++count;
+  });
+  quality.psnr = 10.0 * std::log10(1.0 / (squared / count));
+  return quality;
+}
+
+// Share of the centre view's (grey, mean-removed) spectral energy on the row of vertical frequency 1/2 cycle per
+// row: the alternating-row pattern that hexagonal sampling leaves when shifted and unshifted lens rows disagree.
+double RowShiftEnergyShare(const LightField& light_field, double gain) {
+  const LightFieldShape& shape = light_field.shape();
+  const int height = shape.height & ~1;
+  cv::Mat grey(height, shape.width, CV_64F);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < shape.width; ++x) {
+      double sum = 0.0;
+      for (int c = 0; c < 3; ++c) sum += light_field.at(shape.Centre(), y, x, c);
+      grey.at<double>(y, x) = gain * sum / 3.0;
+    }
+  grey -= cv::mean(grey)[0];
+  cv::Mat spectrum;
+  cv::dft(grey, spectrum, cv::DFT_COMPLEX_OUTPUT);
+  double total = 0.0, row_shift = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < shape.width; ++x) {
+      const cv::Vec2d value = spectrum.at<cv::Vec2d>(y, x);
+      const double energy = value[0] * value[0] + value[1] * value[1];
+      total += energy;
+      if (y == height / 2) row_shift += energy;
+    }
+  return row_shift / total;
+}
+
+class MiniIllumDecode : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    simulate::CaptureOptions options;
+    options.noise = false;
+    options.supersampling = 2;
+    if (std::getenv("DSCALE")) options.disparity_scale = std::atof(std::getenv("DSCALE"));
+    if (std::getenv("SSAMP")) options.supersampling = std::atoi(std::getenv("SSAMP"));
+    shot_ = new Shot(Simulate("mini-illum", options));
+    grid_ = new LensletGrid(FitGrid(*shot_));
+  }
+  static void TearDownTestSuite() {
+    delete shot_;
+    delete grid_;
+  }
+  static Shot* shot_;
+  static LensletGrid* grid_;
+};
+Shot* MiniIllumDecode::shot_ = nullptr;
+LensletGrid* MiniIllumDecode::grid_ = nullptr;
+
+TEST_F(MiniIllumDecode, GridModelMatchesTheSimulatorsLattice) {
+  const simulate::LensletLattice& truth = shot_->capture.lattice;
+  EXPECT_EQ(grid_->columns, truth.columns);
+  EXPECT_EQ(grid_->rows, truth.rows);
+  EXPECT_EQ(grid_->row_shift, truth.row_shift);
+  EXPECT_NEAR(grid_->spacing_x / truth.spacing, 1.0, 1e-4);
+  EXPECT_NEAR(grid_->spacing_y / truth.RowSpacing(), 1.0, 1e-4);
+  EXPECT_NEAR(grid_->rotation, truth.rotation, 1e-4);
+  EXPECT_NEAR(grid_->origin_x, truth.origin_x, 0.05);
+  EXPECT_NEAR(grid_->origin_y, truth.origin_y, 0.05);
+  double sum = 0.0;
+  for (int j = 0; j < truth.rows; ++j)
+    for (int i = 0; i < truth.columns; ++i) {
+      double x = 0.0, y = 0.0;
+      grid_->Centre(i, j, x, y);
+      const PixelPosition t = truth.Centre(i, j);
+      sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
+    }
+  const double rms = std::sqrt(sum / (truth.rows * truth.columns));
+  std::printf("  grid: %d x %d lenses, centre rms vs truth %.4f px, fit residual %.4f px\n", grid_->columns,
+              grid_->rows, rms, grid_->rms_residual);
+  EXPECT_LT(rms, 0.05);
+}
+
+TEST_F(MiniIllumDecode, DecodedGeometryIsTheSimulatorsGrid) {
+  const DecodedGeometry geometry = DecodedGeometryFor(*grid_);
+  EXPECT_EQ(geometry.views, shot_->capture.grid.views);
+  EXPECT_EQ(geometry.width, shot_->capture.grid.width);
+  EXPECT_EQ(geometry.height, shot_->capture.grid.height);
+  EXPECT_NEAR(geometry.view_step, shot_->capture.grid.view_step, 1e-3);
+  const LightField decoded = Decode(*shot_, *grid_, {});
+  EXPECT_EQ(decoded.shape(), shot_->truth.light_field.shape());
+  EXPECT_TRUE(decoded.HasWeights());
+  EXPECT_EQ(decoded.transfer, Transfer::kLinear);
+}
+
+TEST_F(MiniIllumDecode, InnerViewsReach30DbAndDemosaicMethodsCompared) {
+  // Compare the demosaicking methods on the same capture; the default must be the best (within 0.05 dB).
+  double best = 0.0, default_psnr = 0.0;
+  for (const DemosaicMethod method :
+       {DemosaicMethod::kBilinear, DemosaicMethod::kEdgeAware, DemosaicMethod::kGradient}) {
+    DecodeOptions options;
+    options.demosaic = method;
+    const Quality quality = InnerViewPsnr(Decode(*shot_, *grid_, options), shot_->truth.light_field, 4);
+    std::printf("  demosaic %-10s inner 9x9 views PSNR %.2f dB (gain %.4f)\n", std::string(ToString(method)).c_str(),
+                quality.psnr, quality.gain);
+    best = std::max(best, quality.psnr);
+    if (method == DecodeOptions{}.demosaic) default_psnr = quality.psnr;
+  }
+  EXPECT_GE(default_psnr, 30.0);
+  EXPECT_GE(default_psnr, best - 0.05);
+}
+
+TEST_F(MiniIllumDecode, NoMoreRowShiftEnergyThanTheTruth) {
+  const LightField decoded = Decode(*shot_, *grid_, {});
+  const Quality quality = InnerViewPsnr(decoded, shot_->truth.light_field, 0);
+  const double decoded_share = RowShiftEnergyShare(decoded, quality.gain);
+  const double truth_share = RowShiftEnergyShare(shot_->truth.light_field, 1.0);
+  std::printf("  row-shift frequency energy share: decoded %.3e, truth %.3e\n", decoded_share, truth_share);
+  EXPECT_LE(decoded_share, truth_share);
+}
+
+TEST_F(MiniIllumDecode, WeightsFollowTheWhiteImage) {
+  const LightField decoded = Decode(*shot_, *grid_, {});
+  const LightField& truth = shot_->truth.light_field;
+  // Centre view weights ~ micro-image centre (bright), corner views ~ outside the disc (dark), as in the truth.
+  const LightFieldShape& shape = decoded.shape();
+  auto mean_weight = [&](const LightField& lf, ViewIndex view) {
+    double sum = 0.0;
+    for (int y = 0; y < shape.height; ++y)
+      for (int x = 0; x < shape.width; ++x) sum += lf.weights().at(view, y, x);
+    return sum / static_cast<double>(shape.ViewPixels());
+  };
+  const double centre = mean_weight(decoded, shape.Centre()), corner = mean_weight(decoded, {0, 0});
+  EXPECT_GT(centre, 0.8);
+  EXPECT_LT(corner, 0.1);
+  EXPECT_NEAR(centre / mean_weight(truth, shape.Centre()), 1.0, 0.1);
+}
+
+TEST_F(MiniIllumDecode, Diagnose) {
+  const LightField decoded = Decode(*shot_, *grid_, {});
+  const LightField& truth = shot_->truth.light_field;
+  const LightFieldShape& shape = truth.shape();
+  auto psnr = [&](ViewIndex a, ViewIndex b, int dx, int dy) {
+    double dot = 0, norm = 0;
+    for (int y = 4; y < shape.height - 4; ++y)
+      for (int x = 4; x < shape.width - 4; ++x)
+        for (int c = 0; c < 3; ++c) { double d = decoded.at(a, y, x, c), t = truth.at(b, y + dy, x + dx, c); dot += d * t; norm += d * d; }
+    double g = dot / norm, sq = 0; long n = 0;
+    for (int y = 4; y < shape.height - 4; ++y)
+      for (int x = 4; x < shape.width - 4; ++x)
+        for (int c = 0; c < 3; ++c) { double e = g * decoded.at(a, y, x, c) - truth.at(b, y + dy, x + dx, c); sq += e * e; ++n; }
+    return 10 * std::log10(n / sq);
+  };
+  ViewIndex c = shape.Centre();
+  for (int dy = -1; dy <= 1; ++dy) for (int dx = -1; dx <= 1; ++dx) std::printf("centre shift %d %d: %.2f\n", dx, dy, psnr(c, c, dx, dy));
+  std::printf("u+3 vs u+3 %.2f, vs u-3 %.2f, v+3 vs v+3 %.2f vs v-3 %.2f\n", psnr({c.u+3,c.v},{c.u+3,c.v},0,0), psnr({c.u+3,c.v},{c.u-3,c.v},0,0), psnr({c.u,c.v+3},{c.u,c.v+3},0,0), psnr({c.u,c.v+3},{c.u,c.v-3},0,0));
+  // per-channel means
+  for (int ch = 0; ch < 3; ++ch) { double sd = 0, st = 0; for (int y = 0; y < shape.height; ++y) for (int x = 0; x < shape.width; ++x) { sd += decoded.at(c, y, x, ch); st += truth.at(c, y, x, ch);} std::printf("ch %d mean dec %.4f truth %.4f\n", ch, sd / shape.ViewPixels(), st / shape.ViewPixels()); }
+  {
+    cv::Mat d = decoded.View(c).clone() * 1.4468, t = truth.View(c).clone();
+    auto ps = [](const cv::Mat& x, const cv::Mat& y) { cv::Mat e = x - y; e = e.mul(e); cv::Scalar m = cv::mean(e); return 10 * std::log10(3.0 / (m[0] + m[1] + m[2])); };
+    std::printf("raw %.2f\n", ps(d, t));
+    for (double sigma : {0.5, 1.0, 2.0}) { cv::Mat bd, bt; cv::GaussianBlur(d, bd, cv::Size(0, 0), sigma); cv::GaussianBlur(t, bt, cv::Size(0, 0), sigma); std::printf("blur %.1f: %.2f; truth vs blurred truth %.2f\n", sigma, ps(bd, bt), ps(t, bt)); }
+    cv::Mat hb; cv::Mat k = (cv::Mat_<float>(1, 3) << 0.25f, 0.5f, 0.25f); cv::filter2D(t, hb, -1, k); std::printf("truth vs [1 2 1]/4 horizontal blur %.2f\n", ps(t, hb));
+  }
+  cv::Mat a = decoded.View(c).clone(), b = truth.View(c).clone();
+  a.convertTo(a, CV_8UC3, 255 * 1.45); b.convertTo(b, CV_8UC3, 255);
+  cv::cvtColor(a, a, cv::COLOR_RGB2BGR); cv::cvtColor(b, b, cv::COLOR_RGB2BGR);
+  cv::imwrite("/tmp/dec_centre.png", a); cv::imwrite("/tmp/gt_centre.png", b);
+}
+
+TEST(Decode, HotPixelsAreCorrected) {
+  simulate::CaptureOptions options;
+  options.noise = true;
+  options.hot_pixels = 300;
+  const Shot shot = Simulate("mini-illum", options, false);
+  const LensletGrid grid = FitGrid(shot);
+  DecodeReport report;
+  DecodeOptions decode_options;
+  const LightField with = Decode(shot, grid, decode_options, &report);
+  EXPECT_GE(report.hot_pixels_corrected, 270);   // most stuck pixels found
+  EXPECT_LE(report.hot_pixels_corrected, 600);   // and few false alarms on noise and micro-image edges
+  decode_options.correct_hot_pixels = false;
+  const LightField without = Decode(shot, grid, decode_options);
+  // Uncorrected stuck pixels show up as bright outliers in the well-lit rays; corrected ones do not.
+  auto outliers = [](const LightField& lf) {
+    long count = 0;
+    for (std::size_t k = 0; k < lf.weights().size(); ++k)
+      if (lf.weights().data()[k] > 0.5f && lf.data()[3 * k + 1] > 0.98f) ++count;
+    return count;
+  };
+  EXPECT_LT(outliers(with), outliers(without));
+}
+
+TEST(Decode, BadInputThrows) {
+  simulate::CaptureOptions options;
+  options.noise = false;
+  const Shot shot = Simulate("mini-illum", options, false);
+  const LensletGrid grid = FitGrid(shot);
+  RawImage wrong = ToRawImage(shot.capture);
+  wrong.pixels.resize(wrong.pixels.size() - 10);
+  EXPECT_THROW(DecodeLenslet(wrong, shot.capture_metadata, ToRawImage(shot.white), shot.white_metadata, grid), Error);
+  RawImage small_white = ToRawImage(shot.white);
+  small_white.width -= 2;
+  small_white.pixels.resize(small_white.PixelCount());
+  EXPECT_THROW(
+      DecodeLenslet(ToRawImage(shot.capture), shot.capture_metadata, small_white, shot.white_metadata, grid), Error);
+  LytroMetadata no_levels = shot.capture_metadata;
+  no_levels.raw_format.reset();
+  EXPECT_THROW(DecodeLenslet(ToRawImage(shot.capture), no_levels, ToRawImage(shot.white), shot.white_metadata, grid),
+               Error);
+}
+
+}  // namespace
+}  // namespace lfsp::decode
