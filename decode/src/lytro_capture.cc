@@ -74,10 +74,13 @@ std::string FormatNumber(double value) {
 
 class ItemCollector {
  public:
-  ItemCollector(const LfpContainer& container, bool modulation_frame)
-      : container_(container), modulation_frame_(modulation_frame) {}
+  ItemCollector(const LfpContainer& container, bool modulation_frame, std::string source)
+      : container_(container), modulation_frame_(modulation_frame), source_(std::move(source)) {}
 
-  void Walk(const nlohmann::json& node, const std::string& path) {
+  void Walk(const nlohmann::json& node, const std::string& path, int depth = 0) {
+    // Real tables of contents are under 15 levels deep; a hostile one must not exhaust the stack.
+    if (depth > kMaxDepth)
+      throw Error(source_ + ": table of contents nested deeper than " + std::to_string(kMaxDepth) + " levels");
     if (node.is_object()) {
       ancestors_.push_back(&node);
       for (const auto& [key, value] : node.items()) {
@@ -85,12 +88,12 @@ class ItemCollector {
         if (value.is_string() && EndsWith(key, "Ref") && value.get<std::string>().rfind("sha1-", 0) == 0) {
           Add(path, key, value.get<std::string>());
         } else {
-          Walk(value, child);
+          Walk(value, child, depth + 1);
         }
       }
       ancestors_.pop_back();
     } else if (node.is_array()) {
-      for (std::size_t i = 0; i < node.size(); ++i) Walk(node[i], path + "[" + std::to_string(i) + "]");
+      for (std::size_t i = 0; i < node.size(); ++i) Walk(node[i], path + "[" + std::to_string(i) + "]", depth + 1);
     }
   }
 
@@ -128,8 +131,10 @@ class ItemCollector {
     items_.push_back(std::move(item));
   }
 
+  static constexpr int kMaxDepth = 100;
   const LfpContainer& container_;
   bool modulation_frame_;
+  std::string source_;
   std::vector<const nlohmann::json*> ancestors_;
   std::vector<EmbeddedItem> items_;
 };
@@ -205,7 +210,7 @@ LytroCapture FromContainer(LfpContainer container, const std::string& source) {
     capture.schema = "unknown table of contents";
     capture.metadata_problem = "the table of contents has neither frames[] nor picture.frameArray[]";
   }
-  ItemCollector collector(capture.container, modulation);
+  ItemCollector collector(capture.container, modulation, source);
   collector.Walk(toc, "");
   capture.items = collector.Take();
   return capture;
