@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "../command_registry.h"
+#include "command_registry.h"
 #include "evaluate_registry.h"
 
 namespace lfsp::cli {

@@ -5,10 +5,10 @@
 #include <memory>
 #include <string>
 
-#include "../summary.h"
 #include "evaluate_registry.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/depth/metrics.h"
+#include "summary.h"
 
 namespace lfsp::cli {
 namespace {

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <cstddef>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "lfsp/core/light_field.h"
+#include "lfsp/depth/occlusion.h"
+
+namespace lfsp::depth {
+
+// A matching cost per centre-view pixel and disparity label, stored [y][x][label] so each pixel's cost curve is
+// contiguous (what semi-global aggregation and the refinement read). Lower is better.
+class CostVolume {
+ public:
+  CostVolume() = default;
+  CostVolume(int width, int height, int labels, float fill = 0.0f)
+      : width_(width), height_(height), labels_(labels), data_(Size(width, height, labels), fill) {}
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int labels() const { return labels_; }
+  float* Curve(int y, int x) { return data_.data() + Offset(y, x); }
+  const float* Curve(int y, int x) const { return data_.data() + Offset(y, x); }
+  float* data() { return data_.data(); }
+  const float* data() const { return data_.data(); }
+
+ private:
+  static std::size_t Size(int w, int h, int l) {
+    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(l);
+  }
+  std::size_t Offset(int y, int x) const {
+    return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) *
+           static_cast<std::size_t>(labels_);
+  }
+  int width_ = 0;
+  int height_ = 0;
+  int labels_ = 0;
+  std::vector<float> data_;
+};
+
+// The disparity of each label: `count` values evenly spaced from min to max inclusive.
+std::vector<float> LabelDisparities(float min, float max, int count);
+
+// Each non-centre view contributes, per pixel and label, a truncated L1 difference to the centre view in two
+// representations of the images:
+//  - detail: the high-pass grey image G - Gaussian(G, detail_sigma), G the mean of RGB, divided by its local RMS
+//    (contrast normalisation). It keeps the faint texture of weakly textured, dim surfaces at full weight but drops
+//    slow shading and small brightness differences between views, which otherwise bias the minimum of the plain
+//    colour cost on shadowed surfaces (measured on HCI antinous: BadPix 0.07 18% -> 6%);
+//  - colour: the views themselves, weighted lower. High-pass images lose the contrast between an occluder's
+//    interior and its background, so without this term backgrounds next to objects take the objects' depth.
+struct CostOptions {
+  float detail_sigma = 1.0f;                // pixels; 0 = no detail term
+  float detail_truncation = 0.5f;           // cap of the per-view |normalised grey detail| difference
+  float detail_normalise_sigma = 4.0f;      // > 0: divide detail by its local RMS (Gaussian window), 0 = off
+  float detail_normalise_epsilon = 0.005f;  // added to the RMS, so flat noise is not blown up
+  float colour_weight = 3.0f;               // 0 = no colour term
+  float colour_deadzone = 0.0f;     // colour differences below this are free (shading, view-dependent brightness)
+  float colour_truncation = 0.12f;  // cap of the per-view sum of |RGB| differences, so occluded views cannot dominate
+  int tile_rows = 8;                // rows per work item: the views' rows of one tile stay in cache across labels
+};
+
+// Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile (the
+// light field is read in place; only the detail images are made, once): each non-centre view is resampled
+// bilinearly at the sub-pixel shift the label predicts and compared with the centre view (see CostOptions). Views are
+// accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular patch on one
+// side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge orientation). Without
+// `occlusion` (nullptr) every pixel averages all views. The light field must be RGB (3 channels).
+CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
+                           const CostOptions& options, const OcclusionMap* occlusion);
+
+// Filters every label slice of the volume with a guided filter (He et al.) steered by the centre view: window
+// (2 radius + 1)^2, regularisation epsilon. Costs are averaged over similar-coloured neighbours only, which lifts
+// the faint texture of weakly textured surfaces above the noise without blurring depth across colour edges.
+void AggregateLocally(CostVolume& cost, const cv::Mat& guide_rgb, int radius, float epsilon);
+
+}  // namespace lfsp::depth

@@ -1,0 +1,46 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "lfsp/core/light_field.h"
+#include "lfsp/core/metadata.h"
+#include "lfsp/depth/cost_volume.h"
+#include "lfsp/depth/occlusion.h"
+#include "lfsp/depth/refinement.h"
+#include "lfsp/depth/sgm.h"
+
+namespace lfsp::depth {
+
+// Every parameter of the method. The defaults are the one parameter set used for all scenes.
+struct DepthOptions {
+  std::optional<DisparityRange> range;  // default: the light field's metadata (HCI parameters.cfg disp_min/max)
+  int labels = 80;
+  bool occlusion_handling = true;
+  bool regularise = true;  // semi-global aggregation; false = plain winner-take-all on the cost volume
+  CostOptions cost;
+  OcclusionOptions occlusion;
+  int aggregation_radius = 0;         // edge-aware (guided filter) cost aggregation before SGM (0 = off)
+  float aggregation_epsilon = 1e-3f;  // guided filter regularisation (squared intensity units)
+  SgmOptions sgm;
+  int median_radius = 3;       // weighted-median refinement window radius (0 = off)
+  float median_sigma = 0.05f;  // colour scale of the weighted median's weights
+};
+
+struct DepthResult {
+  DisparityMap disparity;   // centre view, px per view step, HCI convention
+  DisparityMap confidence;  // [0, 1]
+  DisparityRange range;
+  int occlusion_candidates = 0;   // pixels that used the edge-split angular patch
+  double occlusion_radius = 0.0;  // the radius used (after the automatic choice)
+  nlohmann::json timings;         // seconds per step
+};
+
+// The disparity range to use: the options' if given, else the metadata's; throws lfsp::Error if neither has one.
+DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options);
+
+// Occlusion-aware centre-view disparity: cost volume (with the half-patch choice near edges), semi-global
+// aggregation, sub-label refinement, weighted median. Throws lfsp::Error on unusable input.
+DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options);
+
+}  // namespace lfsp::depth

@@ -1,0 +1,46 @@
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+
+namespace lfsp::depth {
+
+// Angular sectors the non-centre views are binned into, by the direction of their offset from the centre view.
+// A split index j (0..kSplits-1) divides the sectors into two halves of kSectors/2 consecutive sectors by a line
+// through the angular centre: half A = sectors j .. j+kSectors/2-1, half B = the rest.
+constexpr int kSectors = 16;
+constexpr int kSplits = kSectors / 2;
+
+// Sector of a view offset (du, dv) != (0, 0): sector s is centred on the direction s * 360/kSectors degrees,
+// measured from +x towards +y (image axes, the same axes as the views' shifts).
+int SectorOfOffset(int du, int dv);
+
+// Split whose dividing line is parallel to an edge whose normal (the image gradient) points at `normal_radians`:
+// the views on the gradient's side fall in one half, the others in the other half.
+int SplitForEdgeNormal(double normal_radians);
+
+struct OcclusionOptions {
+  double canny_low = 20.0;  // Canny hysteresis thresholds (OpenCV, 3x3 Sobel, L2) on each 8-bit RGB channel
+  double canny_high = 60.0;
+  double blur_sigma = 1.0;  // Gaussian pre-smoothing of the centre view, pixels
+  // Pixels within this distance of an edge may be occluded in some views. 0 = automatic: half the largest shift
+  // between the centre and an outer view over the disparity range (AutomaticOcclusionRadius).
+  double radius = 0.0;
+};
+
+// Pixels near centre-view edges (candidate occlusion boundaries) and, for each, the split of the angular patch
+// whose dividing line follows the orientation of the nearest edge.
+struct OcclusionMap {
+  cv::Mat candidate;  // CV_8U, 255 = near an edge: use the better half of the views
+  cv::Mat split;      // CV_8U, split index 0..kSplits-1 (meaningful where candidate)
+  int Candidates() const;
+};
+
+// Half of max(|u - uc|, |v - vc|) * (dmax - dmin), clamped to [2, 32] pixels: a background pixel this far from an
+// occluder's edge is hidden in some outer view when the two are half the disparity range apart.
+double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max);
+
+// Wang et al.'s detector: Canny on each channel of the centre view, OR-ed; orientation from the smoothed gradient
+// at the edge pixel; every pixel within `radius` of an edge inherits the split of its nearest edge pixel.
+OcclusionMap DetectOcclusionEdges(const cv::Mat& centre_rgb, const OcclusionOptions& options);
+
+}  // namespace lfsp::depth

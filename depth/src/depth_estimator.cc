@@ -1,0 +1,84 @@
+#include "lfsp/depth/depth_estimator.h"
+
+#include <chrono>
+#include <string>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::depth {
+namespace {
+
+class StepTimer {
+ public:
+  explicit StepTimer(nlohmann::json& timings) : timings_(timings), start_(Clock::now()) {}
+  void Lap(const char* step) {
+    const Clock::time_point now = Clock::now();
+    timings_[step] = std::chrono::duration<double>(now - start_).count();
+    start_ = now;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  nlohmann::json& timings_;
+  Clock::time_point start_;
+};
+
+}  // namespace
+
+DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options) {
+  std::optional<DisparityRange> range = options.range;
+  if (!range) range = DisparityRangeFromMetadata(light_field.metadata);
+  if (!range) {
+    throw Error("depth: no disparity range: give --dmin/--dmax, or a light field whose metadata has disp_min/disp_max");
+  }
+  if (!std::isfinite(range->min) || !std::isfinite(range->max) || !(range->max > range->min)) {
+    throw Error("depth: invalid disparity range [" + std::to_string(range->min) + ", " + std::to_string(range->max) +
+                "]");
+  }
+  return *range;
+}
+
+DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options) {
+  DepthResult result;
+  result.range = ResolveDisparityRange(light_field, options);
+  const std::vector<float> disparities = LabelDisparities(result.range.min, result.range.max, options.labels);
+  if (light_field.shape().channels != 3) {
+    throw Error("depth: the light field must hold RGB views (got " + ToString(light_field.shape()) + ")");
+  }
+  const cv::Mat centre = light_field.View(light_field.shape().Centre());
+  StepTimer timer(result.timings);
+
+  std::optional<OcclusionMap> occlusion;
+  if (options.occlusion_handling) {
+    OcclusionOptions occlusion_options = options.occlusion;
+    if (occlusion_options.radius <= 0.0) {
+      occlusion_options.radius =
+          AutomaticOcclusionRadius(light_field.shape().nu, light_field.shape().nv, result.range.min, result.range.max);
+    }
+    result.occlusion_radius = occlusion_options.radius;
+    occlusion = DetectOcclusionEdges(centre, occlusion_options);
+    result.occlusion_candidates = occlusion->Candidates();
+  }
+  timer.Lap("occlusion_edges");
+  CostVolume cost = BuildCostVolume(light_field, disparities, options.cost, occlusion ? &*occlusion : nullptr);
+  timer.Lap("cost_volume");
+  if (options.aggregation_radius > 0) {
+    AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);
+    timer.Lap("local_aggregation");
+  }
+  if (options.regularise) {
+    cost = AggregateSemiGlobal(cost, centre, options.sgm);
+    timer.Lap("semi_global");
+  }
+  DisparityEstimate estimate = SelectDisparity(cost, disparities);
+  timer.Lap("select");
+  if (options.regularise) {
+    WeightedMedianRefine(estimate.disparity, centre, options.median_radius, options.median_sigma);
+    timer.Lap("weighted_median");
+  }
+  result.disparity = std::move(estimate.disparity);
+  result.confidence = std::move(estimate.confidence);
+  return result;
+}
+
+}  // namespace lfsp::depth

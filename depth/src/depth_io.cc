@@ -1,0 +1,47 @@
+#include "lfsp/depth/depth_io.h"
+
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/visualize.h"
+
+namespace lfsp::depth {
+
+DepthOutputPaths OutputPathsFor(const std::filesystem::path& disparity_pfm) {
+  DepthOutputPaths paths;
+  paths.disparity = disparity_pfm;
+  paths.preview = std::filesystem::path(disparity_pfm).replace_extension(".png");
+  std::filesystem::path confidence = disparity_pfm;
+  confidence.replace_filename(disparity_pfm.stem().string() + "_confidence.pfm");
+  paths.confidence = confidence;
+  return paths;
+}
+
+void WriteDepthOutputs(const DepthResult& result, const DepthOutputPaths& paths) {
+  WritePfm(result.disparity, paths.disparity);
+  WritePfm(result.confidence, paths.confidence);
+  WriteImage(ColourMapDisparity(result.disparity, result.range), paths.preview, 8);
+}
+
+nlohmann::json ToJson(const DepthOptions& options) {
+  nlohmann::json json;
+  if (options.range) json["range"] = {{"min", options.range->min}, {"max", options.range->max}};
+  json["labels"] = options.labels;
+  json["occlusion_handling"] = options.occlusion_handling;
+  json["regularise"] = options.regularise;
+  json["cost"] = {{"detail_sigma", options.cost.detail_sigma},
+                  {"detail_truncation", options.cost.detail_truncation},
+                  {"detail_normalise_sigma", options.cost.detail_normalise_sigma},
+                  {"detail_normalise_epsilon", options.cost.detail_normalise_epsilon},
+                  {"colour_weight", options.cost.colour_weight},
+                  {"colour_deadzone", options.cost.colour_deadzone},
+                  {"colour_truncation", options.cost.colour_truncation}};
+  json["occlusion"] = {{"canny_low", options.occlusion.canny_low},
+                       {"canny_high", options.occlusion.canny_high},
+                       {"blur_sigma", options.occlusion.blur_sigma},
+                       {"radius", options.occlusion.radius}};
+  json["sgm"] = {{"p1", options.sgm.p1}, {"p2", options.sgm.p2}, {"edge_sigma", options.sgm.edge_sigma}};
+  json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
+  return json;
+}
+
+}  // namespace lfsp::depth

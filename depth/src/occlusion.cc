@@ -1,0 +1,100 @@
+#include "lfsp/depth/occlusion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::depth {
+
+int SectorOfOffset(int du, int dv) {
+  const double angle = std::atan2(static_cast<double>(dv), static_cast<double>(du));
+  const double step = 2.0 * std::numbers::pi / kSectors;
+  const int sector = static_cast<int>(std::lround(angle / step));
+  return ((sector % kSectors) + kSectors) % kSectors;
+}
+
+int SplitForEdgeNormal(double normal_radians) {
+  // Half A of split j holds the sectors centred on j*step .. (j + kSectors/2 - 1)*step, so it is centred on
+  // (j + (kSectors/2 - 1)/2) * step; choose j so that this centre is nearest to the normal.
+  const double step = 2.0 * std::numbers::pi / kSectors;
+  const double j = normal_radians / step - (kSectors / 2 - 1) / 2.0;
+  const int split = static_cast<int>(std::lround(j));
+  return ((split % kSplits) + kSplits) % kSplits;  // j and j + kSplits give the same two halves
+}
+
+double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max) {
+  const double offset = std::max((nu - 1) / 2, (nv - 1) / 2);
+  return std::clamp(0.5 * offset * static_cast<double>(disparity_max - disparity_min), 2.0, 32.0);
+}
+
+int OcclusionMap::Candidates() const { return candidate.empty() ? 0 : cv::countNonZero(candidate); }
+
+OcclusionMap DetectOcclusionEdges(const cv::Mat& centre_rgb, const OcclusionOptions& options) {
+  if (centre_rgb.empty() || centre_rgb.type() != CV_32FC3) {
+    throw Error("occlusion detection: the centre view must be a float RGB image");
+  }
+  if (!(options.radius > 0.0)) throw Error("occlusion detection: the radius must be positive");
+  cv::Mat smooth;
+  cv::GaussianBlur(centre_rgb, smooth, cv::Size(), options.blur_sigma);
+  std::vector<cv::Mat> channels;
+  cv::split(smooth, channels);
+
+  // Edges: Canny on every channel, OR-ed. Orientation: gradient of the channel with the strongest response.
+  cv::Mat edges(centre_rgb.size(), CV_8U, cv::Scalar(0));
+  cv::Mat best_magnitude(centre_rgb.size(), CV_32F, cv::Scalar(0));
+  cv::Mat normal(centre_rgb.size(), CV_32F, cv::Scalar(0));
+  for (const cv::Mat& channel : channels) {
+    cv::Mat channel8;
+    channel.convertTo(channel8, CV_8U, 255.0);
+    cv::Mat channel_edges;
+    cv::Canny(channel8, channel_edges, options.canny_low, options.canny_high, 3, true);
+    edges |= channel_edges;
+    cv::Mat gx;
+    cv::Mat gy;
+    cv::Sobel(channel, gx, CV_32F, 1, 0, 3);
+    cv::Sobel(channel, gy, CV_32F, 0, 1, 3);
+    for (int y = 0; y < channel.rows; ++y) {
+      for (int x = 0; x < channel.cols; ++x) {
+        const float a = gx.at<float>(y, x);
+        const float b = gy.at<float>(y, x);
+        const float magnitude = a * a + b * b;
+        if (magnitude > best_magnitude.at<float>(y, x)) {
+          best_magnitude.at<float>(y, x) = magnitude;
+          normal.at<float>(y, x) = std::atan2(b, a);
+        }
+      }
+    }
+  }
+
+  // Every pixel inherits the split of its nearest edge pixel (distance transform with per-pixel labels).
+  cv::Mat not_edge;
+  cv::compare(edges, 0, not_edge, cv::CMP_EQ);
+  cv::Mat distance;
+  cv::Mat nearest;
+  cv::distanceTransform(not_edge, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  std::vector<unsigned char> split_of_label(static_cast<std::size_t>(edges.total()) + 1, 0);
+  for (int y = 0; y < edges.rows; ++y) {
+    for (int x = 0; x < edges.cols; ++x) {
+      if (edges.at<unsigned char>(y, x) == 0) continue;
+      const int label = nearest.at<int>(y, x);
+      split_of_label[static_cast<std::size_t>(label)] =
+          static_cast<unsigned char>(SplitForEdgeNormal(normal.at<float>(y, x)));
+    }
+  }
+  OcclusionMap map;
+  cv::compare(distance, options.radius, map.candidate, cv::CMP_LE);
+  if (cv::countNonZero(edges) == 0) map.candidate.setTo(0);
+  map.split = cv::Mat(edges.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < edges.rows; ++y) {
+    for (int x = 0; x < edges.cols; ++x) {
+      map.split.at<unsigned char>(y, x) = split_of_label[static_cast<std::size_t>(nearest.at<int>(y, x))];
+    }
+  }
+  return map;
+}
+
+}  // namespace lfsp::depth
