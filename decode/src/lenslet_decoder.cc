@@ -54,8 +54,8 @@ std::array<float, 4> WhiteGains(ColourMode mode, const RawImage& white, const Ly
   for (int y = 0; y < white.height; y += 3)
     for (int x = 0; x < white.width; ++x) {
       const int phase = BayerPhase(x, y);
-      sums[static_cast<std::size_t>(phase)] +=
-          (white.at(y, x) - levels.black[static_cast<std::size_t>(phase)]) * levels.scale[static_cast<std::size_t>(phase)];
+      sums[static_cast<std::size_t>(phase)] += (white.at(y, x) - levels.black[static_cast<std::size_t>(phase)]) *
+                                               levels.scale[static_cast<std::size_t>(phase)];
     }
   const double green = 0.5 * (sums[static_cast<std::size_t>(std::find(tile.begin(), tile.end(), 1) - tile.begin())] +
                               sums[static_cast<std::size_t>(std::find(tile.begin(), tile.end(), 2) - tile.begin())]);
@@ -76,8 +76,8 @@ std::array<float, 9> CameraColourMatrix(const LytroMetadata& metadata) {
   std::array<float, 9> matrix{};
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
-      matrix[static_cast<std::size_t>(3 * row + col)] =
-          static_cast<float>(bias * ccm[static_cast<std::size_t>(3 * row + col)] * balance[static_cast<std::size_t>(col)]);
+      matrix[static_cast<std::size_t>(3 * row + col)] = static_cast<float>(
+          bias * ccm[static_cast<std::size_t>(3 * row + col)] * balance[static_cast<std::size_t>(col)]);
   return matrix;
 }
 
@@ -197,8 +197,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   timer.Lap("hot_pixels");
   const std::array<float, 4> white_gains =
       WhiteGains(options.colour, white, white_metadata, white_levels, white_format.mosaic);
-  Devignette(bayer, white, white_levels, white_gains, static_cast<float>(options.min_white),
-             white_metadata.source);
+  Devignette(bayer, white, white_levels, white_gains, static_cast<float>(options.min_white), white_metadata.source);
   const cv::Mat grey_white = WhiteImageToGrey(white, white_format, white_metadata.source);
   timer.Lap("devignette");
 
@@ -217,6 +216,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   light_field.EnableWeights(0.0f);
   timer.Lap("allocate");
   SliceLensletImage(rgb, grey_white, grid, geometry, light_field);
+  SoftenRowAlternation(light_field, static_cast<float>(options.dehex));
   timer.Lap("slice");
 
   // 4. Colour.
@@ -225,18 +225,15 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
   timer.Lap("colour");
 
-  light_field.metadata["decode"] = {{"source", capture_metadata.source},
-                                    {"white_image", white_metadata.source},
-                                    {"demosaic", out_report.demosaic},
-                                    {"colour", out_report.colour},
-                                    {"output_scale", out_report.output_scale},
-                                    {"hot_pixels_corrected", out_report.hot_pixels_corrected},
-                                    {"view_step_pixels", geometry.view_step},
-                                    {"grid_spacing_x", grid.spacing_x},
-                                    {"grid_spacing_y", grid.spacing_y},
-                                    {"grid_rotation", grid.rotation},
-                                    {"grid_rms_residual", grid.rms_residual}};
-  if (!capture_metadata.camera_model.empty()) light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
+  light_field.metadata["decode"] = {
+      {"source", capture_metadata.source},       {"white_image", white_metadata.source},
+      {"demosaic", out_report.demosaic},         {"colour", out_report.colour},
+      {"output_scale", out_report.output_scale}, {"hot_pixels_corrected", out_report.hot_pixels_corrected},
+      {"view_step_pixels", geometry.view_step},  {"grid_spacing_x", grid.spacing_x},
+      {"grid_spacing_y", grid.spacing_y},        {"grid_rotation", grid.rotation},
+      {"grid_rms_residual", grid.rms_residual}};
+  if (!capture_metadata.camera_model.empty())
+    light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
   return light_field;
 }
 

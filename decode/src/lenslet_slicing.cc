@@ -126,4 +126,28 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
   }
 }
 
+void SoftenRowAlternation(LightField& light_field, float alpha) {
+  if (alpha <= 0.0f) return;
+  const LightFieldShape& shape = light_field.shape();
+  const std::size_t row_size = static_cast<std::size_t>(shape.width) * static_cast<std::size_t>(shape.channels);
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel
+  {
+    std::vector<float> previous(row_size), current(row_size);
+#pragma omp for schedule(dynamic, 1)
+    for (int k = 0; k < views; ++k) {
+      float* view = light_field.ViewData(ViewFromCameraNumber(k, shape.nu));
+      std::copy(view, view + row_size, previous.begin());
+      for (int y = 1; y + 1 < shape.height; ++y) {
+        float* row = view + static_cast<std::size_t>(y) * row_size;
+        const float* next = row + row_size;
+        std::copy(row, row + row_size, current.begin());
+        for (std::size_t i = 0; i < row_size; ++i)
+          row[i] = (1.0f - 2.0f * alpha) * current[i] + alpha * (previous[i] + next[i]);
+        std::swap(previous, current);
+      }
+    }
+  }
+}
+
 }  // namespace lfsp::decode

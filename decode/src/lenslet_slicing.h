@@ -17,4 +17,9 @@ namespace lfsp::decode {
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const LensletGrid& grid,
                        const DecodedGeometry& geometry, LightField& light_field);
 
+// Softens what hexagonal sampling leaves behind: along vertical edges, shifted and unshifted lens rows place the edge
+// half a pitch apart, so the decoded view alternates row by row. Each row is mixed with its two neighbours,
+// [alpha, 1 - 2 alpha, alpha] (the response at the row-alternation frequency is 1 - 4 alpha). Parallel over views.
+void SoftenRowAlternation(LightField& light_field, float alpha);
+
 }  // namespace lfsp::decode
