@@ -56,7 +56,8 @@ Rotation RotationFromAngleAxis(const std::array<double, 3>& r) {
 Ray PhysicalRay(const CheckerboardCamera& camera, double i, double j, double k, double l) {
   const auto& h = camera.h;
   double phi[4];
-  for (int r = 0; r < 4; ++r) phi[r] = h[5 * r] * i + h[5 * r + 1] * j + h[5 * r + 2] * k + h[5 * r + 3] * l + h[5 * r + 4];
+  for (int r = 0; r < 4; ++r)
+    phi[r] = h[5 * r] * i + h[5 * r + 1] * j + h[5 * r + 2] * k + h[5 * r + 3] * l + h[5 * r + 4];
   const auto& d = camera.distortion;
   const double du = phi[2] - d[3], dv = phi[3] - d[4];
   const double r2 = du * du + dv * dv;
@@ -72,7 +73,8 @@ struct BoardHit {
 
 class BoardGeometry {
  public:
-  explicit BoardGeometry(const BoardPose& pose) : rotation_(RotationFromAngleAxis(pose.rotation)), t_(pose.translation) {}
+  explicit BoardGeometry(const BoardPose& pose)
+      : rotation_(RotationFromAngleAxis(pose.rotation)), t_(pose.translation) {}
 
   BoardHit Intersect(const Ray& ray) const {
     double o[3], d[3];  // ray in the board frame: R^T (origin - t), R^T direction
@@ -118,7 +120,8 @@ double SquareWave(double coordinate, double square, double metres_per_pixel, dou
 
 // Smoothed indicator of the interval [lo, hi] along one board axis.
 double Inside(double coordinate, double lo, double hi, double metres_per_pixel, double sigma) {
-  return SmoothStep((coordinate - lo) / metres_per_pixel, sigma) * SmoothStep((hi - coordinate) / metres_per_pixel, sigma);
+  return SmoothStep((coordinate - lo) / metres_per_pixel, sigma) *
+         SmoothStep((hi - coordinate) / metres_per_pixel, sigma);
 }
 
 // Vignetting of a whole view: 1 inside the main-lens aperture, falling to a dark floor for views outside it.
@@ -144,7 +147,8 @@ std::array<double, 25> RecentredH(double h11, double h13, double h31, double h33
   h[18] = h44;
   h[24] = 1.0;
   const double ic = (width - 1) / 2.0, jc = (height - 1) / 2.0, kc = (nu - 1) / 2.0, lc = (nv - 1) / 2.0;
-  for (int r = 0; r < 4; ++r) h[5 * r + 4] = -(h[5 * r] * ic + h[5 * r + 1] * jc + h[5 * r + 2] * kc + h[5 * r + 3] * lc);
+  for (int r = 0; r < 4; ++r)
+    h[5 * r + 4] = -(h[5 * r] * ic + h[5 * r + 1] * jc + h[5 * r + 2] * kc + h[5 * r + 3] * lc);
   return h;
 }
 
@@ -281,7 +285,8 @@ CheckerboardCapture RenderCheckerboardLightField(const CheckerboardCaptureOption
         const double mean = albedo * weight;
         const double sigma_noise =
             std::sqrt(options.read_noise * options.read_noise + mean / std::max(options.photons_at_white, 1.0));
-        const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        const std::size_t pixel =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
         for (int c = 0; c < options.channels; ++c) {
           const double value = mean + sigma_noise * normal(rng);
           pixels[pixel * static_cast<std::size_t>(options.channels) + static_cast<std::size_t>(c)] =
@@ -337,7 +342,7 @@ std::vector<BoardPose> CalibrationPoses(const CheckerboardCamera& camera, int co
   std::vector<BoardPose> poses;
   const double pi = std::acos(-1.0);
   for (int n = 0; n < count; ++n) {
-    const double fill = 0.62 + 0.18 * uniform(rng);
+    const double fill = 0.52 + 0.18 * uniform(rng);
     const double distance = fit / fill;
     const double tilt = (15.0 + 25.0 * uniform(rng)) * pi / 180.0;
     const double axis_angle = 2 * pi * (n + 0.3 * uniform(rng)) / count;  // tilt axes spread around the circle
@@ -358,9 +363,11 @@ std::vector<BoardPose> CalibrationPoses(const CheckerboardCamera& camera, int co
       const double f = angle / (2.0 * std::sin(angle));
       aa = {f * (r.m[2][1] - r.m[1][2]), f * (r.m[0][2] - r.m[2][0]), f * (r.m[1][0] - r.m[0][1])};
     }
-    // Place the board centre slightly off the optical axis.
-    const double centre_x = (uniform(rng) - 0.5) * 0.06 * fov_x * distance;
-    const double centre_y = (uniform(rng) - 0.5) * 0.06 * fov_y * distance;
+    // Move the board centre off the optical axis, towards a corner of the view (the corners of the field of view
+    // are where the distortion is strongest), keeping the board with its margins inside the view.
+    const double span_x = board_w / (distance * fov_x), span_y = board_h / (distance * fov_y);
+    const double centre_x = (uniform(rng) - 0.5) * 0.7 * (1.0 - span_x) * fov_x * distance;
+    const double centre_y = (uniform(rng) - 0.5) * 0.7 * (1.0 - span_y) * fov_y * distance;
     const double bx = (corners_x - 1) * square_size / 2.0, by = (corners_y - 1) * square_size / 2.0;
     BoardPose pose;
     pose.rotation = aa;

@@ -51,10 +51,10 @@ struct CheckerboardCaptureOptions {
   int corners_y = 19;
   double square_size = 3.61e-3;  // m
   BoardPose pose;
-  int channels = 3;             // 3: grey replicated to RGB with independent noise; 1: grey
-  double blur = 0.5;            // optical blur (Gaussian sigma, pixels) at the focal plane
-  double defocus_blur = 0.35;   // extra sigma per pixel of disparity (defocus grows with the distance to focus)
-  double read_noise = 0.004;    // noise standard deviation at black, in [0, 1] units
+  int channels = 3;                // 3: grey replicated to RGB with independent noise; 1: grey
+  double blur = 0.5;               // optical blur (Gaussian sigma, pixels) at the focal plane
+  double defocus_blur = 0.35;      // extra sigma per pixel of disparity (defocus grows with the distance to focus)
+  double read_noise = 0.004;       // noise standard deviation at black, in [0, 1] units
   double photons_at_white = 2500;  // shot noise: variance of a value x is x / photons_at_white
   double aperture_radius = 1.02;   // views with aperture radius (in half view-grid widths) beyond this are dark
   std::uint32_t seed = 1;
