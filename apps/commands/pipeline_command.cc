@@ -27,6 +27,13 @@ void AddPipelineCommand(CLI::App& app) {
   command->add_option("--depth-labels", options->depth.labels, "Disparity labels of the depth cost volume")
       ->capture_default_str()
       ->check(CLI::Range(8, 512));
+  command->add_option("--recolor", options->recolor,
+                      "Recolour superpixels, e.g. \"at=120,80;hue=140\" or \"ids=3+17;saturation=0\" (keys: at, ids, "
+                      "hue, saturation, value, feather, space); default: no recolouring");
+  command
+      ->add_option("--focal-stack", options->focal_stack_slices, "Slices of the focal stack over the disparity range")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   command->callback([options, input, out] {
     options->input = *input;
     options->out = *out;

@@ -19,6 +19,7 @@ struct SimulateCommandOptions {
   simulate::SimulateOptions library;
   std::string size = "256x256";
   std::string out;
+  std::string storage = "float32";
   bool list_scenes = false;
 };
 
@@ -39,6 +40,9 @@ void RunSimulate(SimulateCommandOptions& options) {
   }
   if (options.out.empty()) throw Error("--out: required (the output folder)");
   ParseSize(options.size, options.library.width, options.library.height);
+  options.library.ground_truth_storage = options.storage == "uint8"    ? SampleStorage::kUint8
+                                         : options.storage == "uint16" ? SampleStorage::kUint16
+                                                                       : SampleStorage::kFloat32;
   const simulate::SimulateResult result = simulate::Simulate(options.library, options.out);
   nlohmann::json summary = result.summary;
   summary["out"] = options.out;
@@ -90,6 +94,10 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_flag("!--no-white-images", lib.white_images, "Capture: do not write whites/MOD_####.RAW + .TXT");
   command->add_option("--compression", lib.compression_level, "gzip level of the .h5 outputs (0-9)")
       ->check(CLI::Range(0, 9))
+      ->capture_default_str();
+  command->add_option("--storage", options->storage,
+                      "Sample type of the light fields in the .h5 outputs: float32, uint16 or uint8 (smaller, quantised)")
+      ->check(CLI::IsMember({"float32", "uint16", "uint8"}))
       ->capture_default_str();
   command->add_flag("--list-scenes", options->list_scenes, "List the built-in scenes and exit");
   command->add_option("--out", options->out, "Output folder (created if needed)");

@@ -10,13 +10,18 @@
 #include "../summary.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/visualize.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/edit/recolor.h"
+#include "lfsp/edit/refocus.h"
+#include "lfsp/edit/selection.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
 #include "pipeline_report.h"
+#include "recolor_spec.h"
 
 namespace lfsp::pipeline {
 namespace fs = std::filesystem;
@@ -92,6 +97,9 @@ fs::path DefaultSample() {
 PipelineResult RunPipeline(const PipelineOptions& options) {
   const auto wall_start = Clock::now();
   const fs::path input = options.input.empty() ? DefaultSample() : options.input;
+  // Parse everything the user typed before any work, so a typo fails at once.
+  const std::optional<RecolorSpec> recolor =
+      options.recolor.empty() ? std::nullopt : std::optional<RecolorSpec>(ParseRecolorSpec(options.recolor));
   PrepareOutputFolder(options.out);
 
   PipelineResult result;
@@ -99,7 +107,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   summary["input"] = input.string();
   summary["output"] = options.out.string();
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
-  StageRunner stages(5, timings);
+  StageRunner stages(recolor ? 7 : 6, timings);
 
   Bundle bundle = stages.Run("load", [&] { return LoadLightField(input); });
   const LightField& light_field = bundle.light_field;
@@ -123,6 +131,46 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     return lfsp;
   });
 
+  RecolorFigures recolor_figures;
+  if (recolor) {
+    stages.Run("recolor", [&] {
+      const Labels& labels = segmentation.labels;
+      const std::vector<std::int32_t> selection = recolor->points.empty()
+                                                      ? edit::SelectLabelIds(labels, recolor->ids)
+                                                      : edit::SelectAtPoints(labels, recolor->points);
+      Bundle recoloured;
+      recoloured.light_field = light_field;
+      const edit::RecolorStats stats = edit::Recolor(recoloured.light_field, labels, selection, recolor->options);
+      SaveLightField(recoloured, options.out / "recolored.h5");
+      const ViewIndex centre = light_field.shape().Centre();
+      recolor_figures.before = DisplayRgb8(light_field.View(centre), light_field.transfer);
+      recolor_figures.after = DisplayRgb8(recoloured.light_field.View(centre), light_field.transfer);
+      WriteImage(recolor_figures.before, options.out / "recolor_before.png");
+      WriteImage(recolor_figures.after, options.out / "recolor_after.png");
+      recolor_figures.selected_labels = selection.size();
+      summary["recolor"] = {{"spec", options.recolor},
+                            {"selected_labels", selection.size()},
+                            {"selected_rays", stats.selected_rays},
+                            {"changed_rays", stats.changed_rays}};
+      return 0;
+    });
+  }
+
+  FocalStackFigures focal_stack;
+  stages.Run("refocus", [&] {
+    focal_stack.disparities =
+        edit::EvenlySpacedDisparities(depth_result.range.min, depth_result.range.max, options.focal_stack_slices);
+    const std::vector<cv::Mat> slices = edit::FocalStack(light_field, focal_stack.disparities);
+    fs::create_directories(options.out / "focal_stack");
+    for (std::size_t i = 0; i < slices.size(); ++i) {
+      focal_stack.slices.push_back(DisplayRgb8(slices[i], light_field.transfer));
+      char name[64];
+      std::snprintf(name, sizeof name, "slice_%02zu_d%+.2f.png", i, focal_stack.disparities[i]);
+      WriteImage(focal_stack.slices.back(), options.out / "focal_stack" / name);
+    }
+    return 0;
+  });
+
   nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
   stages.Run("evaluate", [&] {
     std::vector<DisparityMap> gt_view_disparity;
@@ -136,7 +184,12 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   });
 
   stages.Run("report", [&] {
-    ReportInputs inputs{light_field, depth_result, segmentation, bundle.disparity ? &*bundle.disparity : nullptr};
+    ReportInputs inputs{light_field,
+                        depth_result,
+                        segmentation,
+                        bundle.disparity ? &*bundle.disparity : nullptr,
+                        recolor ? &recolor_figures : nullptr,
+                        &focal_stack};
     report::Report report = BuildReport(inputs, options);
     report.metrics = metrics;
     report.timings = timings;  // stages so far; the report stage itself is in summary.json
@@ -150,7 +203,9 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     return 0;
   });
 
-  summary["parameters"] = {{"segment", segment::ToJson(options.segment)}, {"depth_labels", options.depth.labels}};
+  summary["parameters"] = {{"segment", segment::ToJson(options.segment)},
+                           {"depth_labels", options.depth.labels},
+                           {"focal_stack_slices", options.focal_stack_slices}};
   summary["metrics"] = metrics;
   summary["timings"] = timings;
   summary["wall_seconds"] = std::chrono::duration<double>(Clock::now() - wall_start).count();

@@ -89,6 +89,24 @@ report::Section SuperpixelSection(const ReportInputs& inputs) {
   return section;
 }
 
+report::Section RecolorSection(const RecolorFigures& recolor) {
+  report::Section section{"Recolouring", {}, {}};
+  section.figures.push_back({"Before", "centre view", recolor.before});
+  section.figures.push_back(
+      {"After", std::to_string(recolor.selected_labels) + " superpixels recoloured in every view", recolor.after});
+  return section;
+}
+
+report::Section FocalStackSection(const FocalStackFigures& stack) {
+  report::Section section{"Focal stack", {}, {}};
+  for (std::size_t i = 0; i < stack.slices.size(); ++i) {
+    char title[64];
+    std::snprintf(title, sizeof title, "Focused at d = %+.2f", stack.disparities[i]);
+    section.figures.push_back({title, "shift-and-sum over all views", Thumbnail(stack.slices[i])});
+  }
+  return section;
+}
+
 }  // namespace
 
 report::Report BuildReport(const ReportInputs& inputs, const PipelineOptions& options) {
@@ -99,6 +117,8 @@ report::Report BuildReport(const ReportInputs& inputs, const PipelineOptions& op
   report.sections.push_back(LightFieldSection(inputs.light_field));
   report.sections.push_back(DepthSection(inputs));
   report.sections.push_back(SuperpixelSection(inputs));
+  if (inputs.recolor != nullptr) report.sections.push_back(RecolorSection(*inputs.recolor));
+  if (inputs.focal_stack != nullptr) report.sections.push_back(FocalStackSection(*inputs.focal_stack));
   return report;
 }
 

@@ -8,11 +8,24 @@
 
 namespace lfsp::pipeline {
 
+struct RecolorFigures {
+  cv::Mat before;  // centre view, 8-bit RGB
+  cv::Mat after;
+  std::size_t selected_labels = 0;
+};
+
+struct FocalStackFigures {
+  std::vector<float> disparities;
+  std::vector<cv::Mat> slices;  // 8-bit RGB
+};
+
 struct ReportInputs {
   const LightField& light_field;
   const depth::DepthResult& depth;
   const segment::LfspResult& segmentation;
   const DisparityMap* ground_truth_disparity;  // may be null
+  const RecolorFigures* recolor;               // may be null
+  const FocalStackFigures* focal_stack;        // may be null
 };
 
 // The figures of report.html: centre view, a sweep through the views, depth, LFSP boundaries on the centre view and

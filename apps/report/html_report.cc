@@ -79,7 +79,7 @@ h1 { margin-bottom: 0.2em; } .subtitle { color: #666; margin-top: 0; }
 section { background: #fff; border: 1px solid #ddd; border-radius: 6px; padding: 1em 1.5em; margin: 1.5em 0; }
 .figures { display: flex; flex-wrap: wrap; gap: 1.2em; }
 figure { margin: 0; max-width: 100%; }
-figure img { max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; display: block; }
+figure img { max-width: 100%; min-width: 192px; image-rendering: pixelated; border: 1px solid #ccc; display: block; }
 figcaption { font-size: 0.85em; color: #555; max-width: 560px; }
 table { border-collapse: collapse; margin: 0.5em 0 1em 0; }
 td, th { border: 1px solid #ddd; padding: 0.25em 0.7em; text-align: left; font-size: 0.9em; }

@@ -1,0 +1,210 @@
+// `lfsp recolor LF --labels LABELS.h5 (--label-ids ... | --at x,y ... | --mask MASK.png) --out OUT`: change hue,
+// saturation and value of chosen light-field superpixels in every view at once.
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "command_registry.h"
+#include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/load.h"
+#include "lfsp/edit/display.h"
+#include "lfsp/edit/labels_file.h"
+#include "lfsp/edit/recolor.h"
+#include "lfsp/edit/selection.h"
+#include "summary.h"
+
+namespace lfsp::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RecolorCommandOptions {
+  std::string input;
+  std::string labels;
+  std::vector<std::int32_t> label_ids;
+  std::vector<std::string> at;
+  std::string mask;
+  float hue = 0.0f;
+  float saturation = 1.0f;
+  float value = 1.0f;
+  std::string space = "lch";
+  float feather = 0.0f;
+  bool no_weights = false;
+  int bit_depth = 8;
+  std::string out;
+};
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+cv::Point ParsePoint(const std::string& text) {
+  const std::size_t comma = text.find(',');
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument("no comma");
+    std::size_t used_x = 0;
+    std::size_t used_y = 0;
+    const int x = std::stoi(text.substr(0, comma), &used_x);
+    const int y = std::stoi(text.substr(comma + 1), &used_y);
+    if (used_x != comma || used_y != text.size() - comma - 1) throw std::invalid_argument("trailing characters");
+    return {x, y};
+  } catch (const std::exception&) {
+    throw Error("--at '" + text + "': expected a centre-view pixel as x,y (column,row), e.g. --at 120,88");
+  }
+}
+
+std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, const Labels& labels,
+                                          nlohmann::ordered_json& how) {
+  const int ways = (options.label_ids.empty() ? 0 : 1) + (options.at.empty() ? 0 : 1) + (options.mask.empty() ? 0 : 1);
+  if (ways != 1) throw Error("choose the superpixels in exactly one way: --label-ids, --at or --mask");
+  if (!options.label_ids.empty()) {
+    how = {{"by", "label-ids"}, {"label_ids", options.label_ids}};
+    return edit::SelectLabelIds(labels, options.label_ids);
+  }
+  if (!options.at.empty()) {
+    std::vector<cv::Point> points;
+    for (const std::string& text : options.at) points.push_back(ParsePoint(text));
+    how = {{"by", "at"}, {"points", options.at}};
+    return edit::SelectAtPoints(labels, points);
+  }
+  how = {{"by", "mask"}, {"mask", options.mask}, {"min_area_fraction", 0.5}};
+  return edit::SelectByMask(labels, ReadImage(options.mask).pixels, 0.5);
+}
+
+// Preview names beside the output: out/edited.h5 -> out/edited.before.png and out/edited.after.png.
+fs::path PreviewPath(const fs::path& out, const std::string& which) {
+  fs::path name = out.stem();
+  name += "." + which + ".png";
+  return out.parent_path() / name;
+}
+
+void RunRecolor(const RecolorCommandOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
+  edit::RecolorOptions recolor;
+  recolor.adjustment.hue_degrees = options.hue;
+  recolor.adjustment.saturation = options.saturation;
+  recolor.adjustment.value = options.value;
+  recolor.adjustment.space = edit::ColourSpaceFromString(options.space);
+  recolor.feather_px = options.feather;
+  recolor.use_ray_weights = !options.no_weights;
+  edit::ValidateAdjustment(recolor.adjustment);
+  if (!(options.feather >= 0.0f)) throw Error("--feather: expected a width >= 0 pixels");
+
+  std::error_code ec;
+  if (fs::exists(options.out, ec) && fs::equivalent(options.input, options.out, ec))
+    throw Error("--out " + options.out + " is the input: inputs are never modified, choose another path");
+
+  nlohmann::ordered_json summary;
+  nlohmann::ordered_json timings;
+  summary["command"] = "recolor";
+  summary["input"] = options.input;
+
+  auto step = std::chrono::steady_clock::now();
+  Bundle bundle = LoadLightField(options.input);
+  if (!options.labels.empty()) {
+    bundle.labels = edit::ReadLabelsFile(options.labels);
+  } else if (!bundle.labels) {
+    throw Error(options.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
+  }
+  edit::CheckLabelsMatch(*bundle.labels, bundle.light_field.shape(),
+                         options.labels.empty() ? options.input : options.labels);
+  timings["load_s"] = SecondsSince(step);
+
+  nlohmann::ordered_json how;
+  const std::vector<std::int32_t> selection = ChooseSelection(options, *bundle.labels, how);
+  spdlog::info("selected {} superpixel(s)", selection.size());
+
+  LightField& light_field = bundle.light_field;
+  const ViewIndex centre = light_field.shape().Centre();
+  const cv::Mat before = edit::ToDisplay(light_field.View(centre), light_field.transfer);
+  step = std::chrono::steady_clock::now();
+  const edit::RecolorStats stats = edit::Recolor(light_field, *bundle.labels, selection, recolor);
+  timings["recolor_s"] = SecondsSince(step);
+  const cv::Mat after = edit::ToDisplay(light_field.View(centre), light_field.transfer);
+
+  step = std::chrono::steady_clock::now();
+  SaveLightField(bundle, options.out, options.bit_depth);
+  const fs::path before_path = PreviewPath(options.out, "before");
+  const fs::path after_path = PreviewPath(options.out, "after");
+  WriteImage(before, before_path);
+  WriteImage(after, after_path);
+  timings["save_s"] = SecondsSince(step);
+
+  summary["labels"] = options.labels.empty() ? options.input : options.labels;
+  summary["selection"] = how;
+  summary["selected_labels"] = selection;
+  summary["adjustment"] = {
+      {"space", options.space},           {"hue_degrees", options.hue},
+      {"saturation", options.saturation}, {"value", options.value},
+      {"feather_px", options.feather},    {"ray_weights", recolor.use_ray_weights && light_field.HasWeights()}};
+  const double total_rays = static_cast<double>(light_field.shape().Views() * light_field.shape().ViewPixels());
+  summary["rays"] = {{"total", static_cast<std::size_t>(total_rays)},
+                     {"selected", stats.selected_rays},
+                     {"feather", stats.feather_rays},
+                     {"changed", stats.changed_rays},
+                     {"selected_fraction", static_cast<double>(stats.selected_rays) / total_rays},
+                     {"selected_per_view", stats.selected_rays_per_view}};
+  summary["outputs"] = {
+      {"light_field", options.out}, {"before_preview", before_path.string()}, {"after_preview", after_path.string()}};
+  timings["total_s"] = SecondsSince(start);
+  summary["timings"] = timings;
+  const fs::path summary_path = SummaryPathFor(options.out);
+  WriteJsonSummary(summary, summary_path);
+  spdlog::info("recoloured {} rays ({} in the feather band); wrote {}", stats.changed_rays, stats.feather_rays,
+               options.out);
+}
+
+void AddRecolorCommand(CLI::App& app) {
+  auto options = std::make_shared<RecolorCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "recolor",
+      "Recolour light-field superpixels chosen in the centre view (by id, by clicking points or by a mask): change "
+      "hue, saturation and value in every view at once. Rays outside the selection and its feather band are left "
+      "bit-identical. Writes the new light field, before/after previews of the centre view and a JSON summary");
+  command->add_option("light_field", options->input, "Input light field (views folder, .h5 bundle or ESLF .png)")
+      ->required();
+  command->add_option("--labels", options->labels,
+                      "HDF5 file with per-ray labels, dataset 'labels' (nv x nu x H x W int32, as `lfsp segment` "
+                      "writes it) or 'GT_LABELS' (default: the input bundle's own labels)");
+  command->add_option("--label-ids", options->label_ids, "Select these label ids, comma-separated, e.g. 3,17")
+      ->delimiter(',');
+  command->add_option("--at", options->at,
+                      "Select the label under this centre-view pixel x,y (column,row); repeat for several, e.g. "
+                      "--at 120,88 --at 40,200");
+  command->add_option("--mask", options->mask,
+                      "Select the labels with more than half of their centre-view area inside this mask image "
+                      "(centre-view size; white = inside)");
+  command->add_option("--hue", options->hue, "Rotate the hue by this many degrees (default: 0)");
+  command->add_option("--saturation", options->saturation, "Multiply saturation (chroma in lch) by this (default: 1)");
+  command->add_option("--value", options->value, "Multiply value (lightness L* in lch) by this (default: 1)");
+  command->add_option("--space", options->space,
+                      "Colour space of the edit: lch (perceptual CIE L*C*h via OpenCV) or hsv (default: lch)");
+  command->add_option("--feather", options->feather,
+                      "Soft transition over this many pixels into neighbouring superpixels, per view, scaled by the "
+                      "ray weights when the input has them (default: 0, hard edges)");
+  command->add_flag("--no-weights", options->no_weights,
+                    "Do not scale the feather band by the input's ray weights (default: scale when present)");
+  command->add_option("--bit-depth", options->bit_depth,
+                      "Bits per sample for PNG outputs (views folder, ESLF, previews use 8): 8 or 16 (default: 8)");
+  command
+      ->add_option(
+          "--out", options->out,
+          "Output light field: .h5 bundle (float, exact), .png ESLF or a views folder; previews "
+          "the previews OUT-stem.before.png and OUT-stem.after.png go beside it, the summary to OUT.summary.json "
+          "(OUT/summary.json for a folder)")
+      ->required();
+  command->callback([options] { RunRecolor(*options); });
+}
+
+}  // namespace
+
+LFSP_REGISTER_COMMAND(120, "recolor", AddRecolorCommand);
+
+}  // namespace lfsp::cli
