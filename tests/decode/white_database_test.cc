@@ -230,3 +230,49 @@ TEST(WhiteDatabaseArchive, MultiVolumeCalibrationArchive) {
 
 }  // namespace
 }  // namespace lfsp::decode
+
+namespace lfsp::decode {
+namespace {
+
+TEST_F(WhiteDatabaseTest, CliBuildAndSelect) {
+  const auto build = lfsp::testing::RunLfsp({"whites", "build", dir_.path().string()});
+  ASSERT_EQ(build.exit_status, 0) << build.err;
+  EXPECT_NE(build.out.find("7 white images indexed"), std::string::npos) << build.out;
+  EXPECT_EQ(ReadWhiteImageDatabase(dir_ / kWhiteDatabaseFileName).entries.size(), 7u);
+  EXPECT_TRUE(fs::exists(dir_ / "whites.summary.json"));
+
+  // A capture of camera B5000000001 at zoom 123 / focus 814, as an Illum container with inline metadata.
+  LfpContainer capture;
+  capture.AddJson({{"frames",
+                    {{{"frame",
+                       {{"metadata", {{"devices", {{"lens", {{"zoomStep", 123}, {"focusStep", 814}}}}}}},
+                        {"privateMetadata", {{"camera", {{"serialNumber", "B5000000001"}}}}}}}}}}},
+                  SectionKind::kMetadata);
+  TempDir other;
+  WriteLfpContainer(capture, other / "IMG_0001.LFR");
+  const auto select =
+      lfsp::testing::RunLfsp({"whites", "select", dir_.path().string(), (other / "IMG_0001.LFR").string()});
+  ASSERT_EQ(select.exit_status, 0) << select.err;
+  EXPECT_NE(select.out.find("MOD_0003.RAW"), std::string::npos) << select.out;
+  EXPECT_NE(select.out.find("zoom step 120 nearest"), std::string::npos) << select.out;
+
+  LfpContainer stranger;
+  stranger.AddJson({{"frames",
+                     {{{"frame",
+                        {{"metadata", {{"devices", {{"lens", {{"zoomStep", 1}, {"focusStep", 2}}}}}}},
+                         {"privateMetadata", {{"camera", {{"serialNumber", "X1"}}}}}}}}}}},
+                   SectionKind::kMetadata);
+  WriteLfpContainer(stranger, other / "IMG_0002.LFR");
+  const auto none =
+      lfsp::testing::RunLfsp({"whites", "select", dir_.path().string(), (other / "IMG_0002.LFR").string()});
+  EXPECT_EQ(none.exit_status, 2);
+  EXPECT_NE(none.err.find("no white image for camera serial X1"), std::string::npos) << none.err;
+  EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1);
+
+  const auto empty = lfsp::testing::RunLfsp({"whites", "build", (other / "nothing").string()});
+  EXPECT_EQ(empty.exit_status, 2);
+  EXPECT_FALSE(fs::exists(other / "nothing" / kWhiteDatabaseFileName));
+}
+
+}  // namespace
+}  // namespace lfsp::decode
