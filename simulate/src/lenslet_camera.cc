@@ -122,11 +122,11 @@ CameraModel CameraPreset(const std::string& name) {
     return c;
   }
   if (name == "mini-f01") {
-    // F01 optics and micro-lenses on a 1280 x 1280 crop (a full F01 raw is 16 MB; this one 2.5 MB).
+    // F01 optics and micro-lenses on a 1024 x 1024 crop (a full F01 raw is 16 MB; this one 1.5 MB).
     CameraModel c = F01();
     c.name = "mini-f01";
-    c.sensor_width = 1280;
-    c.sensor_height = 1280;
+    c.sensor_width = 1024;
+    c.sensor_height = 1024;
     return c;
   }
   throw Error("camera '" + name + "': unknown (expected f01, illum, mini-illum or mini-f01)");

@@ -217,6 +217,7 @@ RenderedLightField RenderDecodedGroundTruth(const Scene& scene, const CameraMode
   RenderedLightField gt = RenderLightField(scene, render);
   // Weight of each ray = the modulation its sensor pixel receives: micro-lens profile at the view's offset times
   // the main-lens falloff at the lens. Views outside the disc get weight ~0, as a decoder's weight channel would.
+  // Quantised to 1/4096 (far below any use of a weight) so that the ground-truth files compress well.
   LightField& lf = gt.light_field;
   lf.EnableWeights(0.0f);
   const int views = s.grid.views;
@@ -233,7 +234,7 @@ RenderedLightField RenderDecodedGroundTruth(const Scene& scene, const CameraMode
           const double a = x * kHalfSqrt3 * s.lattice.spacing, b = y * s.lattice.RowSpacing();
           const double sx = s.lattice.origin_x + c * a - sn * b, sy = s.lattice.origin_y + sn * a + c * b;
           w[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.grid.width) + static_cast<std::size_t>(x)] =
-              static_cast<float>(micro * MainLensFalloff(camera, sx, sy));
+              static_cast<float>(std::round(micro * MainLensFalloff(camera, sx, sy) * 4096.0) / 4096.0);
         }
     }
   lf.metadata["simulate"]["camera"] = camera.name;
