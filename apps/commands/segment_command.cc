@@ -104,13 +104,14 @@ void RunSegment(const SegmentCommandOptions& options) {
   summary["iterations"] = result.iterations_run;
   summary["label_moves"] = result.label_moves;
   summary["moves_per_iteration"] = result.moves_per_iteration;
-  summary["timings_seconds"] = {{"lab", result.timings.lab_seconds},
-                                {"initial", result.timings.initial_seconds},
-                                {"projection", result.timings.projection_seconds},
-                                {"refine", result.timings.refine_seconds},
-                                {"cleanup", result.timings.cleanup_seconds},
-                                {"segmentation", result.timings.total_seconds},
-                                {"command", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+  summary["timings_seconds"] = {
+      {"lab", result.timings.lab_seconds},
+      {"initial", result.timings.initial_seconds},
+      {"projection", result.timings.projection_seconds},
+      {"refine", result.timings.refine_seconds},
+      {"cleanup", result.timings.cleanup_seconds},
+      {"segmentation", result.timings.total_seconds},
+      {"command", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
   WriteJsonSummary(summary, SummaryPathFor(out));
   spdlog::info("wrote {}", out.string());
 }
@@ -131,9 +132,10 @@ void AddSegmentCommand(CLI::App& parent) {
   command->add_option("input", options->input, "Light field: views folder (HCI style) or .h5 bundle")
       ->required()
       ->check(CLI::ExistingPath);
-  command->add_option("--disparity", options->disparity,
-                      "Centre-view disparity (PFM, HCI convention); default: the input's own (gt_disp_lowres.pfm "
-                      "beside the views, or the bundle's dataset)")
+  command
+      ->add_option("--disparity", options->disparity,
+                   "Centre-view disparity (PFM, HCI convention); default: the input's own (gt_disp_lowres.pfm "
+                   "beside the views, or the bundle's dataset)")
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->output, "Output bundle (.h5)")->required();
   command->add_option("--labels-png", options->labels_png,
@@ -151,7 +153,8 @@ void AddSegmentCommand(CLI::App& parent) {
   AddParameter(command, "--pen-angular", p.pen_angular, "Angular-neighbour penalty E_pen_a (Table II)");
   AddParameter(command, "--colour-scale", p.colour_scale, "Lab distance worth one unit of energy");
   AddParameter(command, "--slic-iterations", p.slic_iterations, "Iterations of the initial centre-view SLIC");
-  AddParameter(command, "--iterations", p.iterations, "Outer block-coordinate-descent iterations (0 = projection only)");
+  AddParameter(command, "--iterations", p.iterations,
+               "Outer block-coordinate-descent iterations (0 = projection only)");
   AddParameter(command, "--plane-iterations", p.plane_iterations, "Plane-smoothing rounds per outer iteration");
   AddParameter(command, "--inlier-threshold", p.inlier_threshold,
                "Disparity residual (px) above which a pixel does not pull its plane");

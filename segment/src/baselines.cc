@@ -1,8 +1,11 @@
 #include "lfsp/segment/baselines.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/lsc.hpp>
 #include <opencv2/ximgproc/slic.hpp>
+#include <vector>
 
 #include "centre_slic.h"
 #include "lab_image.h"
@@ -15,25 +18,55 @@ void CheckSize(int size) {
   if (size < 2) throw Error("baseline superpixels: size must be at least 2, got " + std::to_string(size));
 }
 
-// Runs `segment_view(view) -> CV_32SC1 labels` on every view and offsets each view's labels so they are unique.
+// Names each superpixel of one view by the seed-grid cell (step `size`) that holds its centroid, so a label means
+// "the superpixel at this grid position" in every view: per-view methods have no other link between views, and this
+// is how one of their superpixels is followed across views (self-similarity), as the paper does for SLIC and LSC.
+// Superpixels whose centroid falls in an already named cell get fresh labels after the grid's, so the partition is
+// unchanged.
+cv::Mat GridIndexed(const cv::Mat& labels, int size) {
+  cv::Mat compact = labels.clone();
+  const int count = CompactLabels(compact);
+  std::vector<double> sx(static_cast<std::size_t>(count), 0.0), sy(sx), n(sx);
+  for (int y = 0; y < compact.rows; ++y) {
+    for (int x = 0; x < compact.cols; ++x) {
+      const std::size_t k = static_cast<std::size_t>(compact.at<int>(y, x));
+      sx[k] += x;
+      sy[k] += y;
+      n[k] += 1.0;
+    }
+  }
+  const int cells_x = (compact.cols + size - 1) / size, cells_y = (compact.rows + size - 1) / size;
+  std::vector<int> name(static_cast<std::size_t>(count));
+  std::vector<bool> taken(static_cast<std::size_t>(cells_x * cells_y), false);
+  int fresh = cells_x * cells_y;
+  for (std::size_t k = 0; k < name.size(); ++k) {
+    const int cx = std::min(cells_x - 1, static_cast<int>(sx[k] / n[k]) / size);
+    const int cy = std::min(cells_y - 1, static_cast<int>(sy[k] / n[k]) / size);
+    const std::size_t cell = static_cast<std::size_t>(cy * cells_x + cx);
+    if (taken[cell]) {
+      name[k] = fresh++;
+    } else {
+      taken[cell] = true;
+      name[k] = static_cast<int>(cell);
+    }
+  }
+  for (int y = 0; y < compact.rows; ++y) {
+    for (int x = 0; x < compact.cols; ++x)
+      compact.at<int>(y, x) = name[static_cast<std::size_t>(compact.at<int>(y, x))];
+  }
+  return compact;
+}
+
+// Runs `segment_view(view) -> CV_32SC1 labels` on every view.
 template <typename SegmentView>
 Labels PerView(const LightField& light_field, SegmentView segment_view) {
   const LightFieldShape& shape = light_field.shape();
   Labels labels(shape);
   const int views = static_cast<int>(shape.Views());
-  std::vector<int> counts(static_cast<std::size_t>(views));
 #pragma omp parallel for schedule(dynamic)
   for (int cam = 0; cam < views; ++cam) {
     const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-    cv::Mat out = segment_view(view);
-    counts[static_cast<std::size_t>(cam)] = CompactLabels(out);
-    out.copyTo(labels.View(view));
-  }
-  int offset = 0;
-  for (int cam = 0; cam < views; ++cam) {
-    std::int32_t* data = labels.ViewData(ViewFromCameraNumber(cam, shape.nu));
-    for (std::size_t i = 0; i < shape.ViewPixels(); ++i) data[i] += offset;
-    offset += counts[static_cast<std::size_t>(cam)];
+    segment_view(view).copyTo(labels.View(view));
   }
   return labels;
 }
@@ -50,7 +83,7 @@ Labels SlicPerView(const LightField& light_field, const BaselineParams& params) 
     slic->enforceLabelConnectivity(25);
     cv::Mat labels;
     slic->getLabels(labels);
-    return labels;
+    return GridIndexed(labels, params.size);
   });
 }
 
@@ -67,7 +100,7 @@ Labels LscPerView(const LightField& light_field, const BaselineParams& params) {
     lsc->enforceLabelConnectivity(25);
     cv::Mat labels;
     lsc->getLabels(labels);
-    return labels;
+    return GridIndexed(labels, params.size);
   });
 }
 

@@ -241,7 +241,7 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
   return out;
 }
 
-double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, bool in_frame_only) {
   const LightFieldShape& shape = labels.shape();
   if (view_disparity.size() != shape.Views()) throw Error("self-similarity: need one disparity map per view");
   const ViewIndex c = shape.Centre();
@@ -264,9 +264,12 @@ double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& vie
         const std::int32_t k = l[y * shape.width + x];
         const float disparity = d.at(y, x);
         if (k < 0 || !std::isfinite(disparity)) continue;
+        const double px = x + du * disparity;  // Eq. 9 with the project's sign
+        const double py = y + dv * disparity;
+        if (in_frame_only && (px < -0.5 || py < -0.5 || px > shape.width - 0.5 || py > shape.height - 0.5)) continue;
         double* entry = s + static_cast<std::size_t>(k) * 3;
-        entry[0] += x + du * disparity;  // Eq. 9 with the project's sign
-        entry[1] += y + dv * disparity;
+        entry[0] += px;
+        entry[1] += py;
         entry[2] += 1.0;
       }
     }
@@ -292,6 +295,58 @@ double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& vie
     ++counted;
   }
   return counted > 0 ? total / counted : 0.0;
+}
+
+Labels FollowToCentre(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  const LightFieldShape& shape = labels.shape();
+  if (view_disparity.size() != shape.Views()) throw Error("follow to centre: need one disparity map per view");
+  const ViewIndex c = shape.Centre();
+  const std::int32_t* centre = labels.ViewData(c);
+  Labels out = labels;
+  int max_label = -1;
+  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
+  const int views = static_cast<int>(shape.Views());
+  const int w = shape.width, h = shape.height;
+  std::vector<std::unordered_map<int, int>> renames(static_cast<std::size_t>(views));
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    if (view == c) continue;
+    const std::int32_t* l = labels.ViewData(view);
+    const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
+    std::unordered_map<std::uint64_t, int> votes;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const float disparity = d.at(y, x);
+        if (!std::isfinite(disparity)) continue;
+        const int x0 = static_cast<int>(std::lround(x + (view.u - c.u) * disparity));
+        const int y0 = static_cast<int>(std::lround(y + (view.v - c.v) * disparity));
+        if (x0 < 0 || y0 < 0 || x0 >= w || y0 >= h) continue;
+        ++votes[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(l[y * w + x])) << 32) |
+                static_cast<std::uint32_t>(centre[y0 * w + x0])];
+      }
+    }
+    std::unordered_map<int, std::pair<int, int>> best;  // view label -> (centre label, votes)
+    for (const auto& [key, count] : votes) {
+      const int label = static_cast<int>(key >> 32), target = static_cast<int>(key & 0xffffffffu);
+      auto [it, inserted] = best.try_emplace(label, target, count);
+      if (!inserted && count > it->second.second) it->second = {target, count};
+    }
+    for (const auto& [label, target] : best) renames[static_cast<std::size_t>(cam)][label] = target.first;
+  }
+  int fresh = max_label + 1;
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    if (view == c) continue;
+    std::unordered_map<int, int>& rename = renames[static_cast<std::size_t>(cam)];
+    std::int32_t* o = out.ViewData(view);
+    for (std::size_t i = 0; i < shape.ViewPixels(); ++i) {
+      auto [it, inserted] = rename.try_emplace(o[i], fresh);
+      if (inserted) ++fresh;
+      o[i] = it->second;
+    }
+  }
+  return out;
 }
 
 double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity,

@@ -42,6 +42,7 @@ class Refiner {
 
   // One pass of label moves over the active boundary rays of every view; returns the number of moves.
   long long Sweep() {
+    SnapshotCentroids();
     long long moves = 0;
     for (int phase = 0; phase < 4; ++phase) {
       std::vector<int> cams;
@@ -81,6 +82,22 @@ class Refiner {
           Add(SliceOf(cam, labels[index]), LabOf(cam, index), x, y, 1);
         }
       }
+    }
+  }
+
+  // Centre-view centroids and their plane disparities, frozen for one sweep (the centre view changes during it).
+  void SnapshotCentroids() {
+    const int cam = CameraNumber(centre_, shape_.nu);
+    const std::size_t count = static_cast<std::size_t>(in_.superpixels);
+    centre_x_.assign(count, 0.0);
+    centre_y_.assign(count, 0.0);
+    centre_d_.assign(count, 0.0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const Slice& s = SliceOf(cam, static_cast<int>(k));
+      if (s.n <= 0) continue;
+      centre_x_[k] = s.x / s.n;
+      centre_y_[k] = s.y / s.n;
+      centre_d_[k] = planes_[k].AtCentre(centre_x_[k], centre_y_[k]);
     }
   }
 
@@ -167,7 +184,11 @@ class Refiner {
     const double inv_n = 1.0 / s.n;
     const float* lab = LabOf(cam, index);
     const double dl = lab[0] - s.l * inv_n, da = lab[1] - s.a * inv_n, db = lab[2] - s.b * inv_n;
-    const double dx = x - s.x * inv_n, dy = y - s.y * inv_n;
+    // The slice's position centre is where the superpixel's centre-view centroid lands in this view along its
+    // plane, so slices clipped by the image border or partly occluded are not pulled towards their visible part.
+    const std::size_t sk = static_cast<std::size_t>(k);
+    const double dx = x - (centre_x_[sk] - (u - centre_.u) * centre_d_[sk]);
+    const double dy = y - (centre_y_[sk] - (v - centre_.v) * centre_d_[sk]);
     double cost = (dl * dl + da * da + db * db) * inv_colour_ + p_.lambda_p * (dx * dx + dy * dy) * inv_size_;
     const int du = u - centre_.u, dv = v - centre_.v;
     if (centre) {
@@ -275,6 +296,7 @@ class Refiner {
   const ViewIndex centre_;
   std::vector<Slice> slices_;
   std::vector<std::uint8_t> active_;
+  std::vector<double> centre_x_, centre_y_, centre_d_;
   double inv_colour_ = 0.0;
   double inv_size_ = 0.0;
   double inv_range_ = 0.0;

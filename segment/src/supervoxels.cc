@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "connectivity.h"
 #include "lab_image.h"
 #include "lfsp/core/error.h"
 #include "lfsp/segment/baselines.h"
@@ -148,6 +149,11 @@ Labels SlicSupervoxels(const LightField& light_field, ViewOrder order, const Bas
       const double inv = 1.0 / static_cast<double>(s.n);
       centres[i] = {s.l * inv, s.a * inv, s.b * inv, s.x * inv, s.y * inv, s.t * inv};
     }
+  }
+  // Like SLIC's connectivity enforcement, per frame: stray pieces of a supervoxel join their neighbour.
+#pragma omp parallel for schedule(dynamic)
+  for (int f = 0; f < frames; ++f) {
+    KeepLargestPieces(labels.ViewData(frame_view[static_cast<std::size_t>(f)]), w, h);
   }
   return labels;
 }

@@ -16,11 +16,13 @@ struct BaselineParams {
   int temporal_step = 0;  // supervoxel grid step along the view sequence; 0 = size
 };
 
-// SLIC (OpenCV ximgproc, CIELab, connectivity enforced) on every view independently. Labels are made unique per view
-// (view cam's labels are offset), since nothing links them across views.
+// SLIC (OpenCV ximgproc, CIELab, connectivity enforced) on every view independently. Nothing links the views, so a
+// label is the index of the seed-grid cell (step `size`) holding the superpixel's centroid, the same grid in every
+// view; that is the only way to follow a per-view superpixel across views (self-similarity), and it makes ELR
+// meaningless for these methods.
 Labels SlicPerView(const LightField& light_field, const BaselineParams& params = {});
 
-// LSC (Li and Chen, OpenCV ximgproc) on every view independently, labels unique per view.
+// LSC (Li and Chen, OpenCV ximgproc) on every view independently, labels = grid-cell indices as for SlicPerView.
 Labels LscPerView(const LightField& light_field, const BaselineParams& params = {});
 
 // How the views are ordered into a video for a supervoxel method (the paper's Table III).

@@ -45,7 +45,16 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
 // LFSP self-similarity (Eqs. 8-10): every slice projected to the centre view with the ground-truth disparity of its
 // rays, the distance of its centroid from the centre slice's centroid, averaged over the views where the label
 // appears, then over labels present in the centre view and in at least one other view. Pixels.
-double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
+// With `in_frame_only`, rays whose projection falls outside the centre view's frame (scene points the centre view
+// does not see, at the image borders) are left out; the paper's Eq. 8 counts them (the default).
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
+                      bool in_frame_only = false);
+
+// For segmentations made view by view (no label links views): renames every superpixel of every side view to the
+// centre-view label it overlaps most once its pixels are projected to the centre view with `view_disparity` (a
+// superpixel with no overlap keeps a fresh label). This follows per-view superpixels across views as generously as
+// possible, so their self-similarity can be compared with LFSP's.
+Labels FollowToCentre(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
 
 // Labels per pixel (Khan et al.): every centre pixel followed into each view where it is visible (the view's
 // disparity agrees within 0.5 px); 1 + the mean number of distinct labels met there that are absent from the centre

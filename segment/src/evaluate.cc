@@ -1,0 +1,121 @@
+#include "lfsp/segment/evaluate.h"
+
+#include <chrono>
+
+#include "lfsp/core/error.h"
+#include "lfsp/segment/lfsp.h"
+#include "lfsp/segment/metrics.h"
+#include "lfsp/segment/refocus.h"
+
+namespace lfsp::segment {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Runs one baseline, times it and scores it like the segmentation under test.
+// Per-view methods have no labels shared by views: their self-similarity and labels per pixel are measured after
+// FollowToCentre (each superpixel named after the centre superpixel it overlaps most), and ELR is not reported.
+template <typename Run>
+nlohmann::json ScoreBaseline(Run run, const EvaluationInputs& inputs, const std::vector<DisparityMap>* views,
+                             int tolerance, bool per_view) {
+  const auto start = std::chrono::steady_clock::now();
+  const Labels labels = run();
+  const double seconds = SecondsSince(start);
+  nlohmann::json metrics = ScoreLabels(labels, inputs.gt_labels, nullptr, nullptr, tolerance);
+  if (inputs.gt_disparity != nullptr && views != nullptr) {
+    const Labels followed = per_view ? FollowToCentre(labels, *views) : Labels();
+    const nlohmann::json consistency =
+        ScoreLabels(per_view ? followed : labels, nullptr, inputs.gt_disparity, views, tolerance);
+    for (const char* key : {"self_similarity", "self_similarity_in_frame", "labels_per_pixel"}) {
+      metrics[key] = consistency[key];
+    }
+  }
+  if (per_view) {
+    metrics["elr"] = nullptr;
+    metrics["note"] =
+        "per-view method: superpixels followed across views by their best overlap with the centre view's (through "
+        "the ground-truth disparity) for self-similarity and labels per pixel; ELR not meaningful";
+  }
+  metrics["seconds"] = seconds;
+  return metrics;
+}
+
+nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOptions& options) {
+  const DisparityMap& reference =
+      inputs.gt_disparity != nullptr ? *inputs.gt_disparity : *inputs.segmentation_disparity;
+  nlohmann::json sweep = nlohmann::json::array();
+  for (double level : options.refocus_levels) {
+    const LightField refocused = RefocusLightField(*inputs.light_field, level);
+    const LfspResult result =
+        SegmentLightField(refocused, RefocusDisparity(*inputs.segmentation_disparity, level), options.lfsp);
+    const std::vector<DisparityMap> views = PropagateDisparity(RefocusDisparity(reference, level), refocused.shape());
+    sweep.push_back({{"level", level},
+                     {"ss", SelfSimilarity(result.labels, views)},
+                     {"ss_in_frame", SelfSimilarity(result.labels, views, true)},
+                     {"elr", EffectiveLabelRatio(result.labels)},
+                     {"seconds", result.timings.total_seconds}});
+  }
+  return sweep;
+}
+
+}  // namespace
+
+nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
+                           const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance) {
+  nlohmann::json m;
+  m["labels"] = LabelCount(labels);
+  m["centre_labels"] = CentreLabelCount(labels);
+  m["elr"] = EffectiveLabelRatio(labels);
+  m["compactness"] = Compactness(labels);
+  if (gt_labels != nullptr) {
+    m["boundary_recall"] = BoundaryRecall(labels, *gt_labels, boundary_tolerance);
+    m["undersegmentation_error"] = UndersegmentationError(labels, *gt_labels);
+    m["undersegmentation_error_region"] = RegionUndersegmentationError(labels, *gt_labels);
+    m["achievable_segmentation_accuracy"] = AchievableSegmentationAccuracy(labels, *gt_labels);
+  }
+  if (gt_disparity != nullptr && gt_view_disparity != nullptr) {
+    m["self_similarity"] = SelfSimilarity(labels, *gt_view_disparity);
+    m["self_similarity_in_frame"] = SelfSimilarity(labels, *gt_view_disparity, true);
+    m["labels_per_pixel"] = LabelsPerPixel(labels, *gt_disparity, *gt_view_disparity);
+  }
+  return m;
+}
+
+nlohmann::json EvaluateSegmentation(const EvaluationInputs& inputs, const EvaluationOptions& options) {
+  if (inputs.labels == nullptr) throw Error("evaluate segmentation: no labels to score");
+  const LightFieldShape& shape = inputs.labels->shape();
+  std::optional<std::vector<DisparityMap>> views;
+  if (inputs.gt_disparity != nullptr) views = PropagateDisparity(*inputs.gt_disparity, shape);
+  const std::vector<DisparityMap>* view_pointer = views ? &*views : nullptr;
+
+  nlohmann::json report;
+  report["shape"] = ToString(shape);
+  report["boundary_tolerance"] = options.boundary_tolerance;
+  report["lfsp"] =
+      ScoreLabels(*inputs.labels, inputs.gt_labels, inputs.gt_disparity, view_pointer, options.boundary_tolerance);
+  if (options.baselines) {
+    if (inputs.light_field == nullptr) throw Error("evaluate segmentation: the baselines need the light field");
+    const LightField& lf = *inputs.light_field;
+    const BaselineParams& b = options.baseline;
+    const int tol = options.boundary_tolerance;
+    nlohmann::json baselines;
+    baselines["slic_per_view"] = ScoreBaseline([&] { return SlicPerView(lf, b); }, inputs, view_pointer, tol, true);
+    baselines["lsc_per_view"] = ScoreBaseline([&] { return LscPerView(lf, b); }, inputs, view_pointer, tol, true);
+    baselines["slic_supervoxels_row_first"] =
+        ScoreBaseline([&] { return SlicSupervoxels(lf, ViewOrder::kRowFirst, b); }, inputs, view_pointer, tol, false);
+    baselines["slic_supervoxels_column_first"] = ScoreBaseline(
+        [&] { return SlicSupervoxels(lf, ViewOrder::kColumnFirst, b); }, inputs, view_pointer, tol, false);
+    report["baselines"] = baselines;
+  }
+  if (options.refocus) {
+    if (inputs.light_field == nullptr || inputs.segmentation_disparity == nullptr) {
+      throw Error("evaluate segmentation: the refocus sweep needs the light field and the disparity LFSP used");
+    }
+    report["refocus"] = RefocusSweep(inputs, options);
+  }
+  return report;
+}
+
+}  // namespace lfsp::segment

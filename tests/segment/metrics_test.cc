@@ -1,0 +1,162 @@
+// Superpixel metrics on hand-made label maps whose values were computed by hand (see each comment).
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "lfsp/core/error.h"
+#include "lfsp/segment/metrics.h"
+
+namespace lfsp::segment {
+namespace {
+
+// A CV_32SC1 map from rows of labels.
+cv::Mat Map(std::initializer_list<std::initializer_list<int>> rows) {
+  cv::Mat m(static_cast<int>(rows.size()), static_cast<int>(rows.begin()->size()), CV_32S);
+  int y = 0;
+  for (const auto& row : rows) {
+    int x = 0;
+    for (int value : row) m.at<int>(y, x++) = value;
+    ++y;
+  }
+  return m;
+}
+
+// Label by column: columns [0, split) get `left`, the rest `right`.
+cv::Mat Columns(int width, int height, int split, int left = 0, int right = 1) {
+  cv::Mat m(height, width, CV_32S);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) m.at<int>(y, x) = x < split ? left : right;
+  }
+  return m;
+}
+
+TEST(BoundaryRecall, CountsGroundTruthBoundaryPixelsNearASuperpixelBoundary) {
+  // GT boundary between columns 3 and 4: boundary pixels are columns 3 and 4, 8 rows -> 16 pixels.
+  const cv::Mat gt = Columns(8, 8, 4);
+  // Superpixel boundary between columns 5 and 6 (boundary pixels in columns 5, 6): column 4 is 1 px away, column 3
+  // is 2 px away.
+  const cv::Mat shifted = Columns(8, 8, 6);
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(shifted, gt, 0), 0.0);
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(shifted, gt, 1), 0.5);  // column 4 only: 8 / 16
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(shifted, gt, 2), 1.0);
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(cv::Mat::zeros(8, 8, CV_32S), gt, 2), 0.0);  // no superpixel boundary
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(gt, gt, 0), 1.0);
+  EXPECT_DOUBLE_EQ(BoundaryRecall2D(gt, cv::Mat::zeros(8, 8, CV_32S), 2), -1.0);  // undefined: no GT boundary
+}
+
+TEST(UndersegmentationError, NeubertProtzelAndPerRegionByHand) {
+  // 4x4: GT G0 = columns 0-2 (12 px), G1 = column 3 (4 px); superpixels S0 = columns 0-1 (8 px), S1 = columns 2-3.
+  const cv::Mat gt = Columns(4, 4, 3);
+  const cv::Mat sp = Columns(4, 4, 2, 10, 20);
+  // Neubert-Protzel: S0 n G0 = 8, S0 - G0 = 0 -> 0; S1 n G0 = 4, S1 - G0 = 4 -> 4; S1 n G1 = 4, S1 - G1 = 4 -> 4.
+  // (0 + 4 + 4) / 16 = 0.5.
+  EXPECT_DOUBLE_EQ(UndersegmentationError2D(sp, gt), 0.5);
+  // Per region: G0: S0 inside (0), S1 half inside, not most -> 4; 4 / 12. G1: S1 -> 4; 4 / 4. Mean (1/3 + 1) / 2.
+  EXPECT_NEAR(RegionUndersegmentationError2D(sp, gt), 2.0 / 3.0, 1e-12);
+  // The ground truth itself has no error.
+  EXPECT_DOUBLE_EQ(UndersegmentationError2D(gt, gt), 0.0);
+  EXPECT_DOUBLE_EQ(RegionUndersegmentationError2D(gt, gt), 0.0);
+}
+
+TEST(UndersegmentationError, IgnoresUnlabelledGroundTruth) {
+  // Column 3 unlabelled (-1): only columns 0-2 count. S1 = columns 2-3 then counts only its 4 px in column 2, all
+  // inside G0: no error at all.
+  cv::Mat gt = Columns(4, 4, 3, 0, -1);
+  const cv::Mat sp = Columns(4, 4, 2, 10, 20);
+  EXPECT_DOUBLE_EQ(UndersegmentationError2D(sp, gt), 0.0);
+  EXPECT_DOUBLE_EQ(AchievableSegmentationAccuracy2D(sp, gt), 1.0);
+}
+
+TEST(AchievableSegmentationAccuracy, BestRegionPerSuperpixelByHand) {
+  const cv::Mat gt = Columns(4, 4, 3);
+  const cv::Mat sp = Columns(4, 4, 2, 10, 20);
+  // S0 -> G0: 8; S1 -> max(4, 4) = 4. 12 / 16.
+  EXPECT_DOUBLE_EQ(AchievableSegmentationAccuracy2D(sp, gt), 0.75);
+  // A 2x3 example with three regions: rows {0 0 1}, {2 2 1}; one superpixel covering everything -> best region
+  // has 2 pixels of 6.
+  const cv::Mat gt2 = Map({{0, 0, 1}, {2, 2, 1}});
+  EXPECT_NEAR(AchievableSegmentationAccuracy2D(cv::Mat::zeros(2, 3, CV_32S), gt2), 2.0 / 6.0, 1e-12);
+}
+
+TEST(Compactness, SquaresAndHalvesByHand) {
+  // One 4x4 label: area 16, perimeter 16 (image border) -> 4 pi 16 / 256 = pi / 4.
+  EXPECT_NEAR(Compactness2D(cv::Mat::zeros(4, 4, CV_32S)), std::numbers::pi / 4.0, 1e-12);
+  // Two 4x2 halves: area 8, perimeter 12 each -> 4 pi 8 / 144, weights 1/2 each.
+  EXPECT_NEAR(Compactness2D(Columns(4, 4, 2)), 4.0 * std::numbers::pi * 8.0 / 144.0, 1e-12);
+}
+
+// A 3x1 light field (views u = 0, 1, 2; centre u = 1) of 8x4 pixels.
+LightFieldShape Row3() { return {3, 1, 8, 4, 1}; }
+
+void SetView(Labels& labels, int u, const cv::Mat& map) { map.copyTo(labels.View(ViewIndex{u, 0})); }
+
+TEST(EffectiveLabelRatio, CentreLabelsOverAllLabels) {
+  Labels labels(Row3());
+  SetView(labels, 0, Columns(8, 4, 4, 0, 2));
+  SetView(labels, 1, Columns(8, 4, 4, 0, 1));
+  SetView(labels, 2, Columns(8, 4, 4, 0, 1));
+  EXPECT_EQ(LabelCount(labels), 3);
+  EXPECT_EQ(CentreLabelCount(labels), 2);
+  EXPECT_NEAR(EffectiveLabelRatio(labels), 2.0 / 3.0, 1e-12);
+}
+
+TEST(SelfSimilarity, ByHandOnAConstantDisparityRow) {
+  // Disparity 1 everywhere: centre pixel x0 appears at x0 + 1 in view u = 0 and at x0 - 1 in view u = 2, and a
+  // ray at x of view u projects back to x' = x + (u - 1).
+  DisparityMap disparity(8, 4, 1.0f);
+  const std::vector<DisparityMap> views = PropagateDisparity(disparity, Row3());
+  for (const DisparityMap& view : views) EXPECT_FLOAT_EQ(view.at(2, 0), 1.0f);
+
+  // Side views labelled exactly like the centre (ignoring the shift): every slice projects 1 px off in both side
+  // views. Label 0: centre centroid 1.5, u = 0 projects columns 0-3 to -1..2 (centroid 0.5): 1 px. All four
+  // (label, view) distances are 1 -> SS = 1.
+  Labels same(Row3());
+  for (int u = 0; u < 3; ++u) SetView(same, u, Columns(8, 4, 4));
+  EXPECT_NEAR(SelfSimilarity(same, views), 1.0, 1e-12);
+  // In frame only: u = 0 drops label 0's column 0 (x' = -1): centroid of 0..2 = 1.0, 0.5 px; label 1: 1 px.
+  // u = 2 drops label 1's column 7 (x' = 8): 5..7 -> 6.0, 0.5 px; label 0: 1 px. Each label: (0.5 + 1) / 2.
+  EXPECT_NEAR(SelfSimilarity(same, views, true), 0.75, 1e-12);
+
+  // Consistent labels (side views shifted by the disparity): only the image border moves centroids. u = 0:
+  // label 0 = columns 0-4 -> x' -1..3 (centroid 1 vs 1.5), label 1 = 5-7 -> 4..6 (5 vs 5.5); u = 2 mirrors it.
+  Labels consistent(Row3());
+  SetView(consistent, 0, Columns(8, 4, 5));
+  SetView(consistent, 1, Columns(8, 4, 4));
+  SetView(consistent, 2, Columns(8, 4, 3));
+  EXPECT_NEAR(SelfSimilarity(consistent, views), 0.5, 1e-12);
+}
+
+TEST(LabelsPerPixel, ByHandOnAConstantDisparityRow) {
+  // Disparity 2: the side views, labelled like the centre without the shift, show a foreign label to centre pixel
+  // x0 = 2 (view 0 at x = 4 has label 1, absent from the centre window 1..3) and to x0 = 5 (view 2 at x = 3 has
+  // label 0, absent from 4..6): 2 of 8 pixels per row -> 1 + 0.25.
+  DisparityMap disparity(8, 4, 2.0f);
+  const std::vector<DisparityMap> views = PropagateDisparity(disparity, Row3());
+  Labels same(Row3());
+  for (int u = 0; u < 3; ++u) SetView(same, u, Columns(8, 4, 4));
+  EXPECT_NEAR(LabelsPerPixel(same, disparity, views), 1.25, 1e-12);
+  // Consistent labels: 1 exactly.
+  Labels consistent(Row3());
+  SetView(consistent, 0, Columns(8, 4, 6));
+  SetView(consistent, 1, Columns(8, 4, 4));
+  SetView(consistent, 2, Columns(8, 4, 2));
+  EXPECT_NEAR(LabelsPerPixel(consistent, disparity, views), 1.0, 1e-12);
+}
+
+TEST(Metrics4D, AverageOverViews) {
+  // View 0 perfect (UE 0), view 1 like the hand example (UE 0.5), view 2 perfect: mean 1/6.
+  Labels gt(Row3()), sp(Row3());
+  for (int u = 0; u < 3; ++u) SetView(gt, u, Columns(8, 4, 6));
+  SetView(sp, 0, Columns(8, 4, 6));
+  SetView(sp, 1, Columns(8, 4, 4, 5, 7));
+  SetView(sp, 2, Columns(8, 4, 6));
+  // View 1: GT G0 = columns 0-5 (24 px), G1 = 6-7 (8 px); S5 = 0-3 inside G0 (0); S7 = 4-7: overlaps G0 by 8 and G1
+  // by 8 -> 8 + 8 = 16 -> 16 / 32 = 0.5.
+  EXPECT_NEAR(UndersegmentationError(sp, gt), 0.5 / 3.0, 1e-12);
+  EXPECT_NEAR(AchievableSegmentationAccuracy(sp, gt), (1.0 + 24.0 / 32.0 + 1.0) / 3.0, 1e-12);
+  EXPECT_THROW(UndersegmentationError(sp, Labels(LightFieldShape{3, 1, 4, 4, 1})), Error);
+}
+
+}  // namespace
+}  // namespace lfsp::segment
