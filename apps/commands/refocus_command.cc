@@ -199,8 +199,7 @@ void AddRefocusCommand(CLI::App& app) {
       ->required();
   command
       ->add_option("--disparities", options->disparities,
-                   "Refocus at these disparities, pixels per view step, comma-separated; write negative values "
-                   "as --disparities=-1,0,1 (default: none)")
+                   "Refocus at these disparities, pixels per view step, comma-separated, e.g. -1,0,1.5 (default: none)")
       ->delimiter(',');
   command->add_option("--stack", options->stack,
                       "Refocus at N disparities evenly spaced over --range, else the input's recorded disparity "
