@@ -1,48 +1,81 @@
-// `lfsp decode CAPTURE --out OUT`: a Lytro raw capture to a 4D light field.
-//
-// For now this opens and checks the capture (container, SHA-1s, metadata, raw buffer size) and fails cleanly on
-// files that cannot be decoded, such as Lytro Desktop exports that hold only a focus stack or depth map. The
-// decoding pipeline itself (white image, grid model, demosaic, slicing) is not written yet.
+// `lfsp decode CAPTURE [--white-images DIR] --out OUT`: a Lytro raw capture to a 4D light field.
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "command_registry.h"
 #include "lfsp/core/error.h"
-#include "lfsp/decode/lytro_capture.h"
+#include "lfsp/core/load.h"
+#include "lfsp/decode/capture_decoder.h"
+#include "summary.h"
 
 namespace lfsp::cli {
 namespace {
 
-struct DecodeOptions {
+struct DecodeCommandOptions {
   std::string capture;
   std::string white_images;
   std::string out;
+  std::string demosaic = "gradient";
+  std::string colour = "camera";
+  bool no_hot_pixels = false;
+  double dehex = 0.1;
+  int bit_depth = 16;
 };
 
-void RunDecode(const DecodeOptions& options) {
-  const decode::LytroCapture capture = decode::OpenLytroCapture(options.capture);
-  // RawBytes() throws "<file>: no raw image: this file holds ..." for focus-stack / depth exports.
-  (void)capture.RawBytes();
-  if (capture.IsWhiteImage()) {
-    throw Error(options.capture +
-                ": this is a white (modulation) image, not a capture; index it with "
-                "`lfsp whites build` instead");
-  }
-  const decode::RawImage raw = capture.ReadRawImage();  // checks the metadata and the buffer size
-  throw Error(options.capture + ": the raw image (" + std::to_string(raw.width) + "x" + std::to_string(raw.height) +
-              ") reads correctly, but decoding to a light field is not implemented yet in this build");
+void RunDecode(const DecodeCommandOptions& options) {
+  if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth must be 8 or 16");
+  decode::CaptureDecodeOptions decode_options;
+  decode_options.white_images = options.white_images;
+  decode_options.decode.demosaic = decode::DemosaicMethodFromString(options.demosaic);
+  decode_options.decode.colour = decode::ColourModeFromString(options.colour);
+  decode_options.decode.correct_hot_pixels = !options.no_hot_pixels;
+  if (!(options.dehex >= 0.0 && options.dehex <= 0.25)) throw Error("--dehex must be in [0, 0.25]");
+  decode_options.decode.dehex = options.dehex;
+
+  decode::CaptureDecodeResult result = decode::DecodeCaptureFile(options.capture, decode_options);
+  const auto write_start = std::chrono::steady_clock::now();
+  Bundle bundle;
+  bundle.light_field = std::move(result.light_field);
+  SaveLightField(bundle, options.out, options.bit_depth);
+  result.summary["output"] = options.out;
+  result.summary["seconds"]["write"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+  result.summary["parameters"] = {{"demosaic", options.demosaic},
+                                  {"colour", options.colour},
+                                  {"hot_pixels", !options.no_hot_pixels},
+                                  {"dehex", options.dehex},
+                                  {"bit_depth", options.bit_depth}};
+  WriteJsonSummary(result.summary, SummaryPathFor(options.out));
+  const auto& lf = result.summary["light_field"];
+  std::printf("%s: %dx%d views of %dx%d -> %s\nwhite image: %s\n", options.capture.c_str(), lf["nu"].get<int>(),
+              lf["nv"].get<int>(), lf["width"].get<int>(), lf["height"].get<int>(), options.out.c_str(),
+              result.summary["white_image"]["why"].get<std::string>().c_str());
 }
 
 void AddDecodeCommand(CLI::App& app) {
-  auto options = std::make_shared<DecodeOptions>();
+  auto options = std::make_shared<DecodeCommandOptions>();
   CLI::App* command = app.add_subcommand(
-      "decode", "Decode a Lytro raw capture (.lfp/.lfr/.LFR, or .RAW + .TXT/.json) into a 4D light field");
+      "decode",
+      "Decode a Lytro raw capture (.lfp/.lfr/.LFR, or .RAW + .TXT/.json) into a 4D light field: white image by "
+      "serial/zoom/focus, lenslet grid fit, hot pixels, devignetting, demosaic, hex->rect slicing, colour");
   command->add_option("capture", options->capture, "The capture file")->required();
   command->add_option("--white-images", options->white_images,
-                      "Folder of white images (default: the capture's folder and its whites/ sub-folder)");
-  command->add_option("--out", options->out, "Output: a .h5 bundle or a views folder")->required();
+                      "Folder of white images, MOD_*.RAW + .TXT or calibration archives data.C.* (default: the "
+                      "capture's folder, searched recursively, so its whites/ sub-folder is found)");
+  command->add_option("--out", options->out, "Output: OUT.h5 writes a bundle, anything else a views folder")
+      ->required();
+  command->add_option("--demosaic", options->demosaic, "gradient | edge-aware | bilinear (default: gradient)");
+  command->add_option("--colour", options->colour,
+                      "camera (white balance, colour matrix, exposure bias, sRGB) | linear (devignetted scene-linear "
+                      "RGB) (default: camera)");
+  command->add_flag("--no-hot-pixels", options->no_hot_pixels, "Skip hot-pixel correction (default: corrected)");
+  command->add_option("--dehex", options->dehex,
+                      "Row-alternation softening against hexagonal artefacts, 0..0.25 (default: 0.1)");
+  command->add_option("--bit-depth", options->bit_depth, "Views folder PNG bit depth, 8 or 16 (default: 16)");
   command->callback([options] { RunDecode(*options); });
 }
 

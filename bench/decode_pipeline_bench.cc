@@ -1,0 +1,179 @@
+// Decode stage, decoding half (issue 4): the lenslet grid model of a full-size Illum white image (target <= 3 s)
+// and decoding a full-size Illum capture 7728x5368 -> 15x15x434x625 (target <= 2 s wall on 2 cores, <= 3 GB).
+// Inputs come from the simulator (its Illum preset, built from real metadata), so quality is measured against
+// its ground truth: the exact lattice, and the ideal light field on the decoded grid.
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "bench_case.h"
+#include "lfsp/decode/lenslet_decoder.h"
+#include "lfsp/decode/lenslet_grid.h"
+#include "lfsp/simulate/lytro_writer.h"
+#include "lfsp/simulate/raw_capture.h"
+#include "lfsp/simulate/scene.h"
+
+namespace lfsp::bench {
+namespace {
+
+struct IllumShot {
+  simulate::CameraModel camera;
+  decode::RawImage capture;
+  decode::RawImage white;
+  simulate::LensletLattice truth;
+  decode::LytroMetadata capture_metadata;
+  decode::LytroMetadata white_metadata;
+  std::optional<decode::LensletGrid> grid;
+  LightField truth_inner;  // the ideal light field's inner 9x9 views (PSNR), the rest dropped to save memory
+  int inner_offset = 0;
+};
+
+IllumShot& Shot() {
+  static IllumShot shot;  // each case runs in its own process
+  return shot;
+}
+
+decode::RawImage ToRaw(const simulate::RawCapture& capture) {
+  decode::RawImage raw;
+  raw.width = capture.width;
+  raw.height = capture.height;
+  raw.pixels = capture.pixels;
+  return raw;
+}
+
+void PrepareWhite() {
+  IllumShot& shot = Shot();
+  shot.camera = simulate::CameraPreset("illum");
+  const simulate::RawCapture white = simulate::RenderWhiteImage(shot.camera, shot.camera.capture_setting, 5);
+  shot.truth = white.lattice;
+  shot.white_metadata =
+      decode::ParseMetadataDocument(simulate::WhiteImageMetadata(shot.camera, white).dump(), "MOD_0003.TXT");
+  shot.white = ToRaw(white);
+}
+
+decode::LensletGrid EstimateGrid() {
+  IllumShot& shot = Shot();
+  const cv::Mat grey = decode::WhiteImageToGrey(shot.white, shot.white_metadata.RequireRawFormat(), "white");
+  return decode::EstimateLensletGrid(
+             grey, decode::GuessFromMetadata(shot.white_metadata, shot.white.width, shot.white.height))
+      .grid;
+}
+
+void PrepareCapture() {
+  PrepareWhite();
+  IllumShot& shot = Shot();
+  const simulate::Scene scene = simulate::BuiltinScene("planes");
+  simulate::CaptureOptions options;
+  options.noise = false;
+  const simulate::RawCapture capture = simulate::RenderRawCapture(scene, shot.camera, options);
+  shot.capture_metadata = decode::ParseFrameMetadata(simulate::FrameMetadata(shot.camera, capture),
+                                                     simulate::PrivateMetadata(shot.camera), "capture");
+  shot.capture = ToRaw(capture);
+  shot.grid = EstimateGrid();
+  // Keep the inner 9x9 views of the ideal light field only.
+  const LightField truth = simulate::RenderDecodedGroundTruth(scene, shot.camera, options, 1).light_field;
+  const LightFieldShape& full = truth.shape();
+  LightFieldShape inner = full;
+  inner.nu = inner.nv = 9;
+  shot.inner_offset = (full.nu - 9) / 2;
+  shot.truth_inner = LightField(inner);
+  for (int v = 0; v < 9; ++v)
+    for (int u = 0; u < 9; ++u) {
+      const float* from = truth.ViewData({u + shot.inner_offset, v + shot.inner_offset});
+      std::copy(from, from + full.ViewSamples(), shot.truth_inner.ViewData({u, v}));
+    }
+}
+
+// Peak resident memory since the last reset (Linux: /proc/self/clear_refs "5" resets VmHWM).
+void ResetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+double PeakMemoryMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+// PSNR of the decoded inner 9x9 views against the ideal light field after the best global gain (exposure is a free
+// scale), away from a 2-pixel border.
+double InnerPsnr(const LightField& decoded) {
+  const IllumShot& shot = Shot();
+  const LightFieldShape& shape = shot.truth_inner.shape();
+  double dot = 0.0, norm = 0.0, truth_energy = 0.0;
+#pragma omp parallel for collapse(2) reduction(+ : dot, norm, truth_energy)
+  for (int v = 0; v < 9; ++v)
+    for (int u = 0; u < 9; ++u)
+      for (int y = 2; y < shape.height - 2; ++y)
+        for (int x = 2; x < shape.width - 2; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const double d = decoded.at({u + shot.inner_offset, v + shot.inner_offset}, y, x, c);
+            const double t = shot.truth_inner.at({u, v}, y, x, c);
+            dot += d * t;
+            norm += d * d;
+            truth_energy += t * t;
+          }
+  const double gain = dot / norm;
+  const double squared = truth_energy - 2.0 * gain * dot + gain * gain * norm;
+  const double count = 81.0 * (shape.height - 4) * (shape.width - 4) * 3.0;
+  return 10.0 * std::log10(count / squared);
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "decode";
+  c.name = "grid-model-illum";
+  c.input = "Illum white image 7728x5368 (simulated)";
+  c.target = "<= 3 s";
+  c.repetitions = 3;
+  c.prepare = PrepareWhite;
+  c.run = [] {
+    const decode::LensletGrid grid = EstimateGrid();
+    const simulate::LensletLattice& truth = Shot().truth;
+    double sum = 0.0;
+    for (int j = 0; j < truth.rows; ++j)
+      for (int i = 0; i < truth.columns; ++i) {
+        double x = 0.0, y = 0.0;
+        grid.Centre(i, j, x, y);
+        const PixelPosition t = truth.Centre(i, j);
+        sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
+      }
+    char text[160];
+    std::snprintf(text, sizeof text, "centres rms %.4f px, rot err %.1e rad, spacing err %.1e",
+                  std::sqrt(sum / (truth.rows * truth.columns)), std::abs(grid.rotation - truth.rotation),
+                  std::abs(grid.spacing_x / truth.spacing - 1.0));
+    return std::string(text);
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "decode";
+  c.name = "decode-illum";
+  c.input = "Illum 7728x5368 -> 15x15x434x625";
+  c.target = "<= 2 s, <= 3 GB";
+  c.repetitions = 3;
+  c.prepare = PrepareCapture;
+  c.run = [] {
+    IllumShot& shot = Shot();
+    ResetPeakMemory();
+    const double before = PeakMemoryMb();
+    decode::DecodeOptions options;
+    options.colour = decode::ColourMode::kLinear;
+    const LightField decoded = decode::DecodeLenslet(shot.capture, shot.capture_metadata, shot.white,
+                                                     shot.white_metadata, *shot.grid, options);
+    const double decode_peak = PeakMemoryMb() - before;
+    char text[160];
+    std::snprintf(text, sizeof text, "%dx%dx%dx%d, inner 9x9 PSNR %.2f dB, decode +%.0f MB", decoded.shape().nu,
+                  decoded.shape().nv, decoded.shape().height, decoded.shape().width, InnerPsnr(decoded), decode_peak);
+    return std::string(text);
+  };
+  return c;
+}
+
+}  // namespace lfsp::bench
