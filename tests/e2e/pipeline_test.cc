@@ -1,0 +1,105 @@
+// `lfsp pipeline` end to end through the CLI, on a small simulated scene with ground truth.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/pfm.h"
+#include "test_support.h"
+
+namespace lfsp {
+namespace {
+
+namespace fs = std::filesystem;
+using lfsp::testing::ReadBytes;
+using lfsp::testing::RunLfsp;
+using lfsp::testing::TempDir;
+
+class PipelineEndToEnd : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    temp_ = new TempDir();
+    const auto simulated = RunLfsp({"-q", "simulate", "--ideal-only", "--scene", "planes", "--views", "5", "--size",
+                                    "96x80", "--out", (temp_->path() / "scene").string()});
+    ASSERT_EQ(simulated.exit_status, 0) << simulated.err;
+    input_ = temp_->path() / "scene" / "ideal.h5";
+    result_ = new lfsp::testing::CommandResult(
+        RunLfsp({"pipeline", input_.string(), "--out", (temp_->path() / "run").string(), "--size", "12", "--recolor",
+                 "at=48,40;hue=120"}));
+  }
+  static void TearDownTestSuite() {
+    delete result_;
+    delete temp_;
+  }
+  static fs::path Run() { return temp_->path() / "run"; }
+
+  static TempDir* temp_;
+  static fs::path input_;
+  static lfsp::testing::CommandResult* result_;
+};
+
+TempDir* PipelineEndToEnd::temp_ = nullptr;
+fs::path PipelineEndToEnd::input_;
+lfsp::testing::CommandResult* PipelineEndToEnd::result_ = nullptr;
+
+TEST_F(PipelineEndToEnd, WritesEveryIntermediateInTheProjectFormats) {
+  ASSERT_EQ(result_->exit_status, 0) << result_->err;
+  EXPECT_NE(result_->out.find("report.html"), std::string::npos);
+  const DisparityMap disparity = ReadPfm(Run() / "disparity.pfm");
+  EXPECT_EQ(disparity.width(), 96);
+  EXPECT_EQ(disparity.height(), 80);
+  const Bundle segmentation = ReadBundle(Run() / "segmentation.h5");
+  ASSERT_TRUE(segmentation.labels.has_value());
+  EXPECT_EQ(segmentation.labels->shape().nu, 5);
+  const Bundle recoloured = ReadBundle(Run() / "recolored.h5");
+  EXPECT_EQ(recoloured.light_field.shape(), segmentation.light_field.shape());
+  EXPECT_TRUE(fs::exists(Run() / "recolor_after.png"));
+  EXPECT_FALSE(fs::is_empty(Run() / "focal_stack"));
+}
+
+TEST_F(PipelineEndToEnd, SummaryHasMetricsAgainstGroundTruthAndTimingsThatAddUp) {
+  ASSERT_EQ(result_->exit_status, 0) << result_->err;
+  const auto summary = nlohmann::json::parse(ReadBytes(Run() / "summary.json"));
+  ASSERT_TRUE(summary.contains("metrics"));
+  EXPECT_TRUE(summary["metrics"]["depth"]["all"].contains("badpix_0.07"));
+  EXPECT_DOUBLE_EQ(summary["metrics"]["segmentation"]["effective_label_ratio"].get<double>(), 1.0);
+  EXPECT_TRUE(summary["metrics"]["segmentation"].contains("boundary_recall"));
+  double stages = 0.0;
+  for (const auto& [stage, seconds] : summary["timings"].items()) stages += seconds.get<double>();
+  const double wall = summary["wall_seconds"].get<double>();
+  EXPECT_GT(stages, 0.9 * wall) << "stage timings must account for the wall time";
+  EXPECT_LE(stages, wall);
+  EXPECT_GT(summary["recolor"]["changed_rays"].get<long>(), 0);
+}
+
+TEST_F(PipelineEndToEnd, ReportIsSelfContainedWithEverySection) {
+  ASSERT_EQ(result_->exit_status, 0) << result_->err;
+  const std::string html = ReadBytes(Run() / "report.html");
+  for (const char* expected : {"Centre view", "Sweep through the views", "Estimated disparity", "LFSP boundaries",
+                               "Horizontal EPI", "Vertical EPI", "Recolouring", "Focal stack", "Metrics", "Timings"})
+    EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  EXPECT_EQ(html.find("src=\"http"), std::string::npos) << "the report must not load anything from the network";
+  EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+}
+
+TEST(PipelineBadInput, BadRecolorSpecFailsBeforeWritingAnything) {
+  TempDir temp;
+  const auto result =
+      RunLfsp({"pipeline", "/nonexistent.h5", "--out", (temp.path() / "run").string(), "--recolor", "hue=oops"});
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_FALSE(fs::exists(temp.path() / "run"));
+}
+
+TEST(PipelineBadInput, RefusesToWriteIntoAForeignFolder) {
+  TempDir temp;
+  fs::create_directories(temp.path() / "mine");
+  lfsp::testing::WriteBytes(temp.path() / "mine" / "notes.txt", "keep");
+  const auto result = RunLfsp({"pipeline", "/nonexistent.h5", "--out", (temp.path() / "mine").string()});
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_EQ(ReadBytes(temp.path() / "mine" / "notes.txt"), "keep");
+}
+
+}  // namespace
+}  // namespace lfsp
