@@ -62,7 +62,10 @@ cv::Mat RefocusImage(const LightField& light_field, float disparity, const Refoc
   const int channels = shape.channels;
   const ViewIndex centre = shape.Centre();
 
-  const cv::Mat ones(shape.height, shape.width, CV_32FC1, cv::Scalar(1.0));
+  // Without ray weights, the share of each ray inside its view is separable (a column factor times a row factor),
+  // so it is translated as one row and one column instead of a whole image.
+  const cv::Mat ones_row(1, shape.width, CV_32FC1, cv::Scalar(1.0));
+  const cv::Mat ones_column(shape.height, 1, CV_32FC1, cv::Scalar(1.0));
   // One view per thread, each thread summing into its own accumulator: a single parallel region per image keeps
   // both cores busy even on a shared machine (TranslateImage's inner loop then runs serially).
   Accumulator total_accumulator(shape.height, shape.width, channels);
@@ -71,6 +74,8 @@ cv::Mat RefocusImage(const LightField& light_field, float disparity, const Refoc
     Accumulator local(shape.height, shape.width, channels);
     cv::Mat shifted;
     cv::Mat shifted_weight;
+    cv::Mat inside_row;
+    cv::Mat inside_column;
 #pragma omp for schedule(dynamic)
     for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
       const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
@@ -78,15 +83,21 @@ cv::Mat RefocusImage(const LightField& light_field, float disparity, const Refoc
       TranslateImage(light_field.View(view), shift, shifted, options.interpolation, ShearBorder::kReplicate);
       // Weights translate with zero outside the view, so rays that fall outside drop out smoothly.
       const cv::Mat weights = ViewWeights(light_field, view, options.use_ray_weights);
-      TranslateImage(weights.empty() ? ones : weights, shift, shifted_weight, ShearInterpolation::kLinear,
-                     ShearBorder::kZero);
+      if (weights.empty()) {
+        TranslateImage(ones_row, {shift.dx, 0.0f}, inside_row, ShearInterpolation::kLinear, ShearBorder::kZero);
+        TranslateImage(ones_column, {0.0f, shift.dy}, inside_column, ShearInterpolation::kLinear, ShearBorder::kZero);
+      } else {
+        TranslateImage(weights, shift, shifted_weight, ShearInterpolation::kLinear, ShearBorder::kZero);
+      }
       for (int y = 0; y < shape.height; ++y) {
         const float* colour = shifted.ptr<float>(y);
-        const float* weight = shifted_weight.ptr<float>(y);
+        const float* weight = weights.empty() ? inside_row.ptr<float>(0) : shifted_weight.ptr<float>(y);
+        const float row_factor = weights.empty() ? inside_column.at<float>(y, 0) : 1.0f;
+        if (row_factor <= 0.0f) continue;
         float* s = local.sum.ptr<float>(y);
         float* t = local.total.ptr<float>(y);
         for (int x = 0; x < shape.width; ++x) {
-          const float w = weight[x];
+          const float w = row_factor * weight[x];
           if (w <= 0.0f) continue;
           t[x] += w;
           for (int c = 0; c < channels; ++c) s[x * channels + c] += w * colour[x * channels + c];
