@@ -19,8 +19,20 @@ void AddPipelineCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "pipeline",
       "Run everything on one input: (decode) -> depth -> LFSP segmentation -> (recolour) -> evaluation -> report.html");
-  command->add_option("input", *input, "Light field (views folder or .h5 bundle); default: the bundled sample");
+  command->add_option("input", *input,
+                      "Lytro capture (.lfr/.lfp, with white images) or light field (views folder, .h5 bundle); "
+                      "default: the bundled mini-Illum capture");
   command->add_option("--out", *out, "Output folder for every intermediate, summary.json and report.html")->required();
+  command->add_option("--white-images", options->white_images,
+                      "Folder of white images for a raw capture (default: beside the capture, and its whites/)");
+  auto dmin = std::make_shared<float>(0.0f);
+  auto dmax = std::make_shared<float>(0.0f);
+  CLI::Option* dmin_option = command->add_option("--dmin", *dmin,
+                                                 "Smallest disparity to consider (px/view); "
+                                                 "default: the input's metadata, else its ground truth, else -2");
+  CLI::Option* dmax_option = command->add_option("--dmax", *dmax, "Largest disparity to consider (px/view)");
+  dmin_option->needs(dmax_option);
+  dmax_option->needs(dmin_option);
   command->add_option("--size", options->segment.size, "Superpixel size (seed grid step, px)")
       ->capture_default_str()
       ->check(CLI::Range(4, 200));
@@ -34,7 +46,8 @@ void AddPipelineCommand(CLI::App& app) {
       ->add_option("--focal-stack", options->focal_stack_slices, "Slices of the focal stack over the disparity range")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
-  command->callback([options, input, out] {
+  command->callback([options, input, out, dmin, dmax, dmin_option] {
+    if (dmin_option->count() > 0) options->depth.range = DisparityRange{*dmin, *dmax};
     options->input = *input;
     options->out = *out;
     const pipeline::PipelineResult result = pipeline::RunPipeline(*options);

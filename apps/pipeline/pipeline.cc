@@ -2,9 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 
 #include "../report/html_report.h"
 #include "../summary.h"
@@ -14,6 +17,8 @@
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/visualize.h"
+#include "lfsp/decode/capture_decoder.h"
+#include "lfsp/decode/container_info.h"
 #include "lfsp/depth/metrics.h"
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/refocus.h"
@@ -55,13 +60,19 @@ class StageRunner {
   nlohmann::ordered_json& timings_;
 };
 
+// The output folder is marked as a pipeline run so a later run may replace its files, while a user's unrelated
+// non-empty folder is never written into.
+constexpr const char* kRunMarker = ".lfsp-pipeline";
+
 void PrepareOutputFolder(const fs::path& out) {
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec)) ThrowFileError(out.string(), "exists and is not a folder");
-  if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !fs::exists(out / "summary.json", ec))
+  if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !fs::exists(out / kRunMarker, ec))
     ThrowFileError(out.string(), "exists, is not empty and holds no previous pipeline run; refusing to write into it");
   fs::create_directories(out, ec);
   if (ec) ThrowFileError(out.string(), "cannot create output folder: " + ec.message());
+  std::ofstream marker(out / kRunMarker);
+  if (!marker) ThrowFileError(out.string(), "cannot write into the output folder");
 }
 
 nlohmann::ordered_json SegmentationMetrics(const Bundle& input, const segment::LfspResult& result,
@@ -82,12 +93,54 @@ nlohmann::ordered_json SegmentationMetrics(const Bundle& input, const segment::L
   return metrics;
 }
 
+// Ground truth of a simulated capture, written by `lfsp simulate` beside it (ground_truth/decoded.h5), if its
+// shape matches the decoded light field.
+void AttachSimulatorGroundTruth(const fs::path& capture, Bundle& decoded) {
+  const fs::path truth_path = capture.parent_path() / "ground_truth" / "decoded.h5";
+  std::error_code ec;
+  if (!fs::exists(truth_path, ec)) return;
+  Bundle truth = ReadBundle(truth_path);
+  const LightFieldShape& shape = decoded.light_field.shape();
+  const LightFieldShape& truth_shape = truth.light_field.shape();
+  if (truth_shape.nu != shape.nu || truth_shape.nv != shape.nv || truth_shape.width != shape.width ||
+      truth_shape.height != shape.height) {
+    spdlog::warn("{}: ground truth is {} but the decoded light field is {}; metrics skipped", truth_path.string(),
+                 ToString(truth_shape), ToString(shape));
+    return;
+  }
+  decoded.disparity = std::move(truth.disparity);
+  decoded.labels = std::move(truth.labels);
+  spdlog::info("ground truth: {}", truth_path.string());
+}
+
+// Depth needs a disparity range: the user's, else the light field's metadata, else the ground truth's (padded),
+// else a range that covers Lytro captures (+-2 px per view step).
+depth::DepthOptions WithDisparityRange(depth::DepthOptions options, const Bundle& bundle) {
+  if (options.range || DisparityRangeFromMetadata(bundle.light_field.metadata)) return options;
+  if (bundle.disparity) {
+    DisparityRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    for (int i = 0; i < bundle.disparity->width() * bundle.disparity->height(); ++i) {
+      const float d = bundle.disparity->data()[i];
+      if (!std::isfinite(d)) continue;
+      range.min = std::min(range.min, d);
+      range.max = std::max(range.max, d);
+    }
+    const float pad = 0.1f * (range.max - range.min) + 0.05f;
+    options.range = DisparityRange{range.min - pad, range.max + pad};
+    spdlog::info("disparity range {:.2f} .. {:.2f} from the ground truth", options.range->min, options.range->max);
+    return options;
+  }
+  options.range = DisparityRange{-2.0f, 2.0f};
+  spdlog::warn("no disparity range in the input; using -2 .. 2 px per view step (set --dmin/--dmax)");
+  return options;
+}
+
 }  // namespace
 
 fs::path DefaultSample() {
   const char* configured = std::getenv("LFSP_SAMPLES_DIR");
   const fs::path samples = configured ? fs::path(configured) : fs::path(LFSP_SOURCE_SAMPLES_DIR);
-  for (const char* candidate : {"mini-illum/ideal.h5", "ideal/light_field.h5"}) {
+  for (const char* candidate : {"mini-illum/capture.LFR", "ideal/ideal.h5"}) {
     std::error_code ec;
     if (fs::exists(samples / candidate, ec)) return samples / candidate;
   }
@@ -109,12 +162,24 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   StageRunner stages(recolor ? 7 : 6, timings);
 
-  Bundle bundle = stages.Run("load", [&] { return LoadLightField(input); });
+  const bool raw_capture = decode::LooksLikeLytroFile(input);
+  Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
+    if (!raw_capture) return LoadLightField(input);
+    decode::CaptureDecodeOptions decode_options;
+    decode_options.white_images = options.white_images;
+    decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
+    Bundle out;
+    out.light_field = std::move(decoded.light_field);
+    summary["decode"] = decoded.summary;
+    WriteBundle(out, options.out / "decoded.h5");
+    AttachSimulatorGroundTruth(input, out);
+    return out;
+  });
   const LightField& light_field = bundle.light_field;
   summary["light_field"] = ToString(light_field.shape());
 
   const depth::DepthResult depth_result = stages.Run("depth", [&] {
-    depth::DepthResult estimate = depth::EstimateDepth(light_field, options.depth);
+    depth::DepthResult estimate = depth::EstimateDepth(light_field, WithDisparityRange(options.depth, bundle));
     WritePfm(estimate.disparity, options.out / "disparity.pfm");
     WritePfm(estimate.confidence, options.out / "confidence.pfm");
     return estimate;
