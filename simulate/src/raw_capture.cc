@@ -52,11 +52,43 @@ std::array<int, 4> BayerTile(const std::string& pattern) {
   return tile;
 }
 
+// The lattice with its rotation precomputed, for the per-pixel loops: nearest lens and the offset from its centre
+// in one step (same results as LensletLattice::Nearest + LocalOffset).
+struct FastLattice {
+  explicit FastLattice(const LensletLattice& l)
+      : lattice(l), c(std::cos(l.rotation)), s(std::sin(l.rotation)), row(l.RowSpacing()) {}
+  void Locate(double x, double y, int& i, int& j, double& along, double& across) const {
+    const double dx = x - lattice.origin_x, dy = y - lattice.origin_y;
+    const double qa = c * dx + s * dy;
+    const double qb = -s * dx + c * dy;
+    const int j0 = static_cast<int>(std::floor(qb / row));
+    double best = std::numeric_limits<double>::max();
+    for (int jj = j0; jj <= j0 + 1; ++jj) {
+      const double shift = 0.5 * lattice.Shift(jj);
+      const int ii = static_cast<int>(std::lround(qa / lattice.spacing - shift));
+      const double ea = qa - (ii + shift) * lattice.spacing;
+      const double eb = qb - jj * row;
+      const double dist = ea * ea + eb * eb;
+      if (dist < best) {
+        best = dist;
+        i = ii;
+        j = jj;
+        along = ea;
+        across = eb;
+      }
+    }
+  }
+  const LensletLattice& lattice;
+  double c, s, row;
+};
+
 double MicroLensProfile(double r, double disc_radius) {
   // Smooth radial falloff inside the disc (paraboloid in the core, as in real white images the micro-image is
   // brightest at its centre) with a soft edge about 0.7 px wide.
   const double core = 1.0 - 0.45 * (r / disc_radius) * (r / disc_radius);
-  return std::max(0.0, core) * 0.5 * (1.0 - std::tanh((r - disc_radius) / 0.7));
+  const double edge = (r - disc_radius) / 0.7;
+  if (edge < -12.0) return core;  // tanh is -1 to double precision: skip it
+  return std::max(0.0, core) * 0.5 * (1.0 - std::tanh(edge));
 }
 
 double MainLensFalloff(const CameraModel& camera, double x, double y) {
@@ -146,6 +178,7 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
   const double inv_step = 1.0 / s.grid.view_step;
   const double decoded_per_lens = 1.0 / kHalfSqrt3;
   const double cut = s.disc_radius + 3.0;  // beyond this the profile is < 1e-3 of its peak: skip tracing
+  const FastLattice fast(s.lattice);
 #pragma omp parallel for schedule(dynamic, 8)
   for (int y = 0; y < raw.height; ++y) {
     std::uint16_t* row = raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width);
@@ -156,10 +189,9 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
         for (int a = 0; a < k; ++a) {
           const double sx = x + (a + 0.5) / k - 0.5, sy = y + (b + 0.5) / k - 0.5;
           int i = 0, j = 0;
-          s.lattice.Nearest(sx, sy, i, j);
           double along = 0, across = 0;
-          s.lattice.LocalOffset(sx, sy, i, j, along, across);
-          const double r = std::hypot(along, across);
+          fast.Locate(sx, sy, i, j, along, across);
+          const double r = std::sqrt(along * along + across * across);
           if (r > cut) continue;
           const double m = MicroLensProfile(r, s.disc_radius) * MainLensFalloff(camera, sx, sy);
           // The lens gives the spatial sample (decoded grid), the offset within its micro-image the view.
@@ -185,6 +217,7 @@ RawCapture RenderWhiteImage(const CameraModel& camera, int setting_index, std::u
   raw.exposure = 0.8;
   // White images are averages of many exposures in the camera's calibration: less noise than a capture.
   const double full_well = camera.full_well * 16.0;
+  const FastLattice fast(s.lattice);
   const std::uint64_t white_seed = SplitMix(seed ^ (0x5748495445ULL + static_cast<std::uint64_t>(setting_index)));
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < raw.height; ++y) {
@@ -192,8 +225,10 @@ RawCapture RenderWhiteImage(const CameraModel& camera, int setting_index, std::u
     for (int x = 0; x < raw.width; ++x) {
       const int channel = s.tile[static_cast<std::size_t>((y & 1) * 2 + (x & 1))];
       int i = 0, j = 0;
-      s.lattice.Nearest(x, y, i, j);
-      const double m = Modulation(camera, s.lattice, s.disc_radius, x, y, i, j);
+      double along = 0, across = 0;
+      fast.Locate(x, y, i, j, along, across);
+      const double m =
+          MicroLensProfile(std::sqrt(along * along + across * across), s.disc_radius) * MainLensFalloff(camera, x, y);
       const double signal = raw.exposure * s.response[static_cast<std::size_t>(channel)] * m;
       row[x] = Digitise(
           camera, signal, full_well, true, white_seed,
