@@ -172,8 +172,16 @@ std::vector<T> Quantise(const float* values, std::size_t count, float scale) {
   return out;
 }
 
-H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compression_level) {
+// HDF5 stamps objects with their creation time by default; without the stamps the same content gives the same
+// bytes, so regenerated samples and outputs are byte-identical.
+H5::DSetCreatPropList Untimed() {
   H5::DSetCreatPropList properties;
+  H5Pset_obj_track_times(properties.getId(), false);
+  return properties;
+}
+
+H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compression_level) {
+  H5::DSetCreatPropList properties = Untimed();
   if (compression_level > 0) {
     std::vector<hsize_t> chunk = dims;
     chunk[0] = 1;
@@ -245,7 +253,9 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
   H5::Exception::dontPrint();
   AtomicOutput output(path);
   try {
-    H5::H5File file(output.temporary().string(), H5F_ACC_TRUNC);
+    H5::FileCreatPropList file_properties;
+    H5Pset_obj_track_times(file_properties.getId(), false);
+    H5::H5File file(output.temporary().string(), H5F_ACC_TRUNC, file_properties);
     const std::vector<hsize_t> lf_dims = {static_cast<hsize_t>(shape.nv), static_cast<hsize_t>(shape.nu),
                                           static_cast<hsize_t>(shape.height), static_cast<hsize_t>(shape.width),
                                           static_cast<hsize_t>(shape.channels)};
@@ -287,7 +297,8 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
       if (disparity.width() != shape.width || disparity.height() != shape.height)
         ThrowFileError(name, "disparity map size does not match the light field");
       const hsize_t dims[2] = {static_cast<hsize_t>(disparity.height()), static_cast<hsize_t>(disparity.width())};
-      H5::DataSet dataset = file.createDataSet("disparity", H5::PredType::IEEE_F32LE, H5::DataSpace(2, dims));
+      H5::DataSet dataset =
+          file.createDataSet("disparity", H5::PredType::IEEE_F32LE, H5::DataSpace(2, dims), Untimed());
       dataset.write(disparity.data(), H5::PredType::NATIVE_FLOAT);
     }
     if (bundle.labels) {

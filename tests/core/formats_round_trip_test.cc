@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <random>
+#include <thread>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/eslf.h"
@@ -139,6 +141,19 @@ TEST(Hdf5Bundle, DisparityLabelsWeightsAndTransferSurvive) {
   EXPECT_EQ(read.disparity->at(3, 5), disparity.at(3, 5));
   ASSERT_TRUE(read.labels.has_value());
   EXPECT_TRUE(std::equal(labels.data(), labels.data() + labels.size(), read.labels->data()));
+}
+
+TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(8, 2);
+  bundle.disparity = DisparityMap(64, 48, 0.5f);
+  BundleWriteOptions options;
+  options.compression_level = 6;
+  WriteBundle(bundle, temp / "a.h5", options);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // object timestamps have one-second resolution
+  WriteBundle(bundle, temp / "b.h5", options);
+  EXPECT_TRUE(lfsp::testing::ReadBytes(temp / "a.h5") == lfsp::testing::ReadBytes(temp / "b.h5"));
 }
 
 TEST(Pfm, WriteReadIsExactAndStoredBottomRowFirst) {
