@@ -1,5 +1,6 @@
 #include "lfsp/calibrate/calibration_io.h"
 
+#include <Eigen/LU>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -151,7 +152,11 @@ Calibration ReadCalibration(const std::filesystem::path& path) {
   } catch (const json::exception& e) {
     ThrowFileError(path.string(), std::string("not valid JSON: ") + e.what());
   }
-  return CalibrationFromJson(j, path.string());
+  try {
+    return CalibrationFromJson(j, path.string());
+  } catch (const json::exception& e) {  // a field of the wrong type
+    ThrowFileError(path.string(), std::string("malformed calibration: ") + e.what());
+  }
 }
 
 }  // namespace lfsp::calibrate

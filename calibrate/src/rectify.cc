@@ -66,7 +66,7 @@ LightField Rectify(const LightField& input, const RayModel& calibrated, const Ra
       UndistortDirection(calibrated.distortion, ray.u, ray.v, options.inverse_distortion_iterations, ray.u, ray.v);
       const Vector5d n = to_measured * Vector5d(ray.s, ray.t, ray.u, ray.v, 1.0);
       Tap ti, tj, tk, tl;
-      if (!MakeTap(n(0), shape.width, 0.0, ti) || !MakeTap(n(1), shape.height, 0.0, tj) ||
+      if (!MakeTap(n(0), shape.width, 1e-6, ti) || !MakeTap(n(1), shape.height, 1e-6, tj) ||
           !MakeTap(n(2), shape.nu, 0.5, tk) || !MakeTap(n(3), shape.nv, 0.5, tl)) {
         for (int c = 0; c < channels; ++c) out[x * channels + c] = 0.0f;
         out_weight[x] = 0.0f;

@@ -1,0 +1,87 @@
+// Calibration: 10 simulated checkerboard captures (19x19 inner corners, 3.61 mm squares) at full decoded size,
+// Illum geometry (15x15 views of 625x434; issue 7 target: <= 60 s on 2 cores) and F01 geometry (11x11 of
+// 380x380). The timed run is what `lfsp calibrate` does after loading: corners in every view of every capture,
+// then the three solver stages. The quality figure compares the result with the simulator's ground truth.
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench_case.h"
+#include "lfsp/calibrate/calibration.h"
+#include "lfsp/calibrate/corners.h"
+#include "lfsp/simulate/checkerboard.h"
+
+namespace lfsp::bench {
+namespace {
+
+struct CalibrationData {
+  simulate::CheckerboardCamera camera;
+  std::vector<LightField> captures;
+};
+
+// Grey captures (one channel) keep the ten full-size light fields at 4.9 GB with their weights.
+std::shared_ptr<CalibrationData> Render(const simulate::CheckerboardCamera& camera) {
+  auto data = std::make_shared<CalibrationData>();
+  data->camera = camera;
+  const auto poses = simulate::CalibrationPoses(camera, 10, 7);
+  for (std::size_t n = 0; n < poses.size(); ++n) {
+    simulate::CheckerboardCaptureOptions options;
+    options.camera = camera;
+    options.pose = poses[n];
+    options.channels = 1;
+    options.seed = 500 + static_cast<std::uint32_t>(n);
+    data->captures.push_back(simulate::RenderCheckerboardLightField(options).light_field);
+  }
+  return data;
+}
+
+std::string Calibrate(const CalibrationData& data) {
+  std::vector<calibrate::CaptureCorners> corners;
+  for (std::size_t n = 0; n < data.captures.size(); ++n)
+    corners.push_back(calibrate::DetectCaptureCorners(data.captures[n], "capture" + std::to_string(n)));
+  const calibrate::Calibration result = calibrate::Calibrate(corners);
+  const calibrate::Slopes est = result.model.GetSlopes();
+  const auto& h = data.camera.h;
+  const double truth[8] = {h[0], h[2], h[10], h[12], h[6], h[8], h[16], h[18]};
+  double worst = 0;
+  for (int n = 0; n < 8; ++n)
+    if (truth[n] != 0)
+      worst = std::max(worst, std::abs(est[static_cast<std::size_t>(n)] - truth[n]) / std::abs(truth[n]));
+  char text[160];
+  std::snprintf(text, sizeof text, "RMS %.4f mm, max |dH|/H %.3f %%, k1 %.4f (true %.4f)", result.rms_mm, 100 * worst,
+                result.model.distortion.k1, data.camera.distortion[0]);
+  return text;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "calibrate";
+  c.name = "illum-10-captures";
+  c.input = "10 x Illum 15x15x625x434, 19x19 corners";
+  c.target = "<= 60 s";
+  c.repetitions = 2;
+  auto data = std::make_shared<std::shared_ptr<CalibrationData>>();
+  c.prepare = [data] { *data = Render(simulate::IllumCheckerboardCamera()); };
+  c.run = [data] { return Calibrate(**data); };
+  return c;
+}
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "calibrate";
+  c.name = "f01-10-captures";
+  c.input = "10 x F01 11x11x380x380, 19x19 corners";
+  c.target = "-";
+  c.repetitions = 2;
+  auto data = std::make_shared<std::shared_ptr<CalibrationData>>();
+  c.prepare = [data] { *data = Render(simulate::F01CheckerboardCamera(11)); };
+  c.run = [data] { return Calibrate(**data); };
+  return c;
+}
+
+}  // namespace lfsp::bench
