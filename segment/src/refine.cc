@@ -112,11 +112,13 @@ class Refiner {
 
   // Rounded disparity of the ray (x, y) of view offset (du, dv) if it belongs to label k (Eq. 2).
   int RoundedDisparity(int k, int x, int y, int du, int dv) const {
+    return static_cast<int>(std::lround(RayDisparity(k, x, y, du, dv)));
+  }
+  double RayDisparity(int k, int x, int y, int du, int dv) const {
     const Plane& plane = planes_[static_cast<std::size_t>(k)];
     const double denominator = 1.0 - plane.a * du - plane.b * dv;
     const double numerator = plane.a * x + plane.b * y + plane.c;
-    const double d = std::abs(denominator) > 0.1 ? numerator / denominator : numerator;
-    return static_cast<int>(std::lround(d));
+    return std::abs(denominator) > 0.1 ? numerator / denominator : numerator;
   }
 
   // Would removing the ray at (x, y) split its label's slice? True if the label appears in more than one separate
@@ -142,39 +144,101 @@ class Refiner {
   // neighbours in this view, angular neighbours at the candidate's rounded disparity in the 8 neighbouring views,
   // and the mixed ones around them.
   // Stops early, returning a value above `limit`, once the cost exceeds it.
-  double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, int rounded, double limit) {
-    double cost = 0.0;
-    for (int oy = -1; oy <= 1; ++oy) {
-      const int ny = y + oy;
-      if (ny < 0 || ny >= height_) continue;
-      for (int ox = -1; ox <= 1; ++ox) {
-        const int nx = x + ox;
-        if ((ox == 0 && oy == 0) || nx < 0 || nx >= width_) continue;
-        if (own_view[ny * width_ + nx] != k) cost += p_.pen_spatial;
-      }
+  // The clique is cut at the image border and at the edge views of the light field; the counts of differing
+  // neighbours are rescaled to the full clique (8 spatial, 8 angular, 64 mixed) so that rays there resist label
+  // changes as much as anywhere else (otherwise the edge views, with 3 or 5 neighbouring views instead of 8, drift).
+  // The angular neighbour sits at a fractional position (x - a d, y - b d); it is read with bilinear weights, so the
+  // clique follows the true epipolar line instead of a rounded one (rounding d would favour moving a boundary by
+  // round(d) per view step, and the error adds up towards the edge views). Its 3x3 mixed ring is taken around the
+  // nearest pixel.
+  double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, double limit) {
+    const int rounded = static_cast<int>(std::lround(d));
+    const int w = width_;
+    int spatial = 0, spatial_valid = 8;
+    if (x >= 1 && y >= 1 && x + 1 < w && y + 1 < height_) {
+      const std::int32_t* p = own_view + y * w + x;
+      spatial = (p[-w - 1] != k) + (p[-w] != k) + (p[-w + 1] != k) + (p[-1] != k) + (p[1] != k) + (p[w - 1] != k) +
+                (p[w] != k) + (p[w + 1] != k);
+    } else {
+      spatial = CountBlock(own_view, x, y, k, spatial_valid);
     }
+    // First the angular neighbours (the heaviest penalty), which usually settle a hopeless candidate; then the
+    // mixed ones around them.
+    struct Block {
+      const std::int32_t* labels;
+      int x, y;
+    };
+    std::array<Block, 8> blocks;
+    int block_count = 0;
+    double angular = 0.0, angular_valid = 0.0;
     for (int b = -1; b <= 1; ++b) {
       const int nv = v + b;
       if (nv < 0 || nv >= shape_.nv) continue;
       for (int a = -1; a <= 1; ++a) {
         const int nu = u + a;
         if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
-        const std::int32_t* other = ViewLabels(nv * shape_.nu + nu);
         // Moving one view step along +u shifts a point by -d (DESIGN.md convention).
-        const int cx = x - a * rounded, cy = y - b * rounded;
-        for (int oy = -1; oy <= 1; ++oy) {
-          const int ny = cy + oy;
-          if (ny < 0 || ny >= height_) continue;
-          for (int ox = -1; ox <= 1; ++ox) {
-            const int nx = cx + ox;
-            if (nx < 0 || nx >= width_) continue;
-            if (other[ny * width_ + nx] != k) cost += (ox == 0 && oy == 0) ? p_.pen_angular : p_.pen_mixed;
-          }
-        }
-        if (cost > limit) return cost;
+        const Block block{ViewLabels(nv * shape_.nu + nu), x - a * rounded, y - b * rounded};
+        AddBilinear(block.labels, x - a * d, y - b * d, k, angular, angular_valid);
+        blocks[static_cast<std::size_t>(block_count++)] = block;
       }
     }
-    return cost;
+    double cost =
+        Rescaled(spatial, spatial_valid, 8) * p_.pen_spatial + Rescaled(angular, angular_valid, 8) * p_.pen_angular;
+    if (cost > limit) return cost;
+    int mixed = 0, mixed_valid = 0;
+    for (int i = 0; i < block_count; ++i) {
+      const Block& block = blocks[static_cast<std::size_t>(i)];
+      if (block.x >= 1 && block.y >= 1 && block.x + 1 < w && block.y + 1 < height_) {
+        const std::int32_t* p = block.labels + block.y * w + block.x;
+        mixed += (p[-w - 1] != k) + (p[-w] != k) + (p[-w + 1] != k) + (p[-1] != k) + (p[1] != k) + (p[w - 1] != k) +
+                 (p[w] != k) + (p[w + 1] != k);
+        mixed_valid += 8;
+      } else {
+        int valid = 0;
+        mixed += CountBlock(block.labels, block.x, block.y, k, valid);
+        mixed_valid += valid;
+      }
+    }
+    return cost + Rescaled(mixed, mixed_valid, 64) * p_.pen_mixed;
+  }
+
+  static double Rescaled(double count, double valid, int full) { return valid > 0 ? count * full / valid : 0.0; }
+
+  // Adds the bilinear weights of the pixels around (fx, fy) whose label differs from k to `count`, and the weights
+  // of those inside the view to `valid`.
+  void AddBilinear(const std::int32_t* labels, double fx, double fy, int k, double& count, double& valid) const {
+    const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+    const double wx = fx - x0, wy = fy - y0;
+    for (int j = 0; j <= 1; ++j) {
+      const double weight_y = j == 0 ? 1.0 - wy : wy;
+      const int y = y0 + j;
+      if (weight_y <= 0.0 || y < 0 || y >= height_) continue;
+      for (int i = 0; i <= 1; ++i) {
+        const double weight = weight_y * (i == 0 ? 1.0 - wx : wx);
+        const int x = x0 + i;
+        if (weight <= 0.0 || x < 0 || x >= width_) continue;
+        valid += weight;
+        if (labels[y * width_ + x] != k) count += weight;
+      }
+    }
+  }
+
+  // Labels != k among the 8 neighbours of (x, y) that lie inside the view; `valid` counts those.
+  int CountBlock(const std::int32_t* labels, int x, int y, int k, int& valid) const {
+    int count = 0;
+    valid = 0;
+    for (int oy = -1; oy <= 1; ++oy) {
+      const int ny = y + oy;
+      if (ny < 0 || ny >= height_) continue;
+      for (int ox = -1; ox <= 1; ++ox) {
+        const int nx = x + ox;
+        if ((ox == 0 && oy == 0) || nx < 0 || nx >= width_) continue;
+        count += labels[ny * width_ + nx] != k;
+        ++valid;
+      }
+    }
+    return count;
   }
 
   // The energy of the ray with label k; once it is known to exceed `limit` it returns early (a value > limit).
@@ -201,7 +265,7 @@ class Refiner {
     if (cost > limit) return cost;
     const double boundary_limit =
         boundary_weight_ > 0.0 ? (limit - cost) / boundary_weight_ : std::numeric_limits<double>::infinity();
-    cost += boundary_weight_ * BoundaryCost(own_view, u, v, x, y, k, RoundedDisparity(k, x, y, du, dv), boundary_limit);
+    cost += boundary_weight_ * BoundaryCost(own_view, u, v, x, y, k, RayDisparity(k, x, y, du, dv), boundary_limit);
     return cost;
   }
 
