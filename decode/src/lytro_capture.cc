@@ -216,6 +216,27 @@ LytroCapture FromContainer(LfpContainer container, const std::string& source) {
   return capture;
 }
 
+// Extractors such as lfpsplitter write a frame as IMG_0001__frame.raw + IMG_0001__frame.json and its private
+// metadata (the camera serial, needed to pick a white image) as IMG_0001__private.json.
+void AddSplitterPrivateMetadata(const std::filesystem::path& metadata_path, LytroMetadata& metadata) {
+  const std::string stem = metadata_path.stem().string();
+  constexpr std::string_view kFrame = "__frame";
+  if (!metadata.private_metadata.empty() || !EndsWith(stem, kFrame)) return;
+  const std::filesystem::path private_path =
+      metadata_path.parent_path() /
+      (stem.substr(0, stem.size() - kFrame.size()) + "__private" + metadata_path.extension().string());
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(private_path, ec)) return;
+  const std::vector<std::uint8_t> bytes = ReadFileBytes(private_path);
+  const nlohmann::json private_metadata = ParseLytroJson(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), private_path.string());
+  const bool modulation = metadata.modulation_frame;
+  const std::string schema = metadata.schema;
+  metadata = ParseFrameMetadata(metadata.frame_metadata, private_metadata, metadata.source);
+  metadata.modulation_frame = modulation;
+  metadata.schema = schema;
+}
+
 LytroCapture FromMetadataDocument(const std::filesystem::path& metadata_path, const std::filesystem::path& raw_path) {
   LytroCapture capture;
   const std::vector<std::uint8_t> bytes = ReadFileBytes(metadata_path);
@@ -223,6 +244,7 @@ LytroCapture FromMetadataDocument(const std::filesystem::path& metadata_path, co
   capture.toc = ParseLytroJson(text, metadata_path.string());
   capture.metadata = ParseMetadataDocument(text, metadata_path.string());
   capture.schema = capture.metadata->schema;
+  AddSplitterPrivateMetadata(metadata_path, *capture.metadata);
   if (raw_path.empty()) {
     capture.path = metadata_path;
     capture.format = "metadata document";

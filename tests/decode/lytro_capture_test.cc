@@ -255,6 +255,23 @@ TEST(LytroCapturePair, RawWithoutMetadataOrOfWrongSize) {
   EXPECT_NE(message.find("raw buffer of 10 bytes, expected 51854880 bytes"), std::string::npos) << message;
 }
 
+TEST(LytroCapturePair, SplitterFrameWithPrivateMetadataBeside) {
+  LFSP_REQUIRE_SHARED_DATA(data);
+  TempDir dir;
+  nlohmann::json md = LoadJson(data / "lytro" / "f01_frame_metadata.json");
+  md["image"]["width"] = 5;
+  md["image"]["height"] = 3;
+  WriteBytes(dir / "IMG_0001__frame.json", md.dump());
+  WriteBytes(dir / "IMG_0001__private.json", R"({"camera": {"serialNumber": "A302130521"}})");
+  const auto pixels = RandomPixels(15, 4095, 9);
+  const auto packed = PackRaw(RawPacking::kBits12BigEndian, pixels, "t");
+  WriteBytes(dir / "IMG_0001__frame.raw", std::string(packed.begin(), packed.end()));
+  const LytroCapture c = OpenLytroCapture(dir / "IMG_0001__frame.raw");
+  EXPECT_EQ(c.metadata->serial, "A302130521");
+  EXPECT_EQ(c.metadata->camera_model, "F01");
+  EXPECT_EQ(c.ReadRawImage().pixels, pixels);
+}
+
 TEST(LytroCaptureArchive, CalibrationFilesAreListedByName) {
   LfpContainer c;
   const std::string raw = c.AddBinary({1, 2, 3, 4, 5});
