@@ -247,7 +247,8 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
               float half_a = 0.0f;
               for (int s = 0; s < kSectors; ++s) half_a += splits.in_half_a[j][s] ? sums[s] : 0.0f;
               const float half_b = total - half_a;
-              cost = std::min(half_a / splits.views_a[j], half_b / splits.views_b[j]);
+              const float half = std::min(half_a / splits.views_a[j], half_b / splits.views_b[j]);
+              cost = std::min(cost, options.half_patch_penalty * half);
             }
             volume.Curve(y, x)[l] = cost;
           }

@@ -58,7 +58,10 @@ struct CostOptions {
   float colour_weight = 3.0f;               // 0 = no colour term
   float colour_deadzone = 0.0f;     // colour differences below this are free (shading, view-dependent brightness)
   float colour_truncation = 0.12f;  // cap of the per-view sum of |RGB| differences, so occluded views cannot dominate
-  int tile_rows = 8;                // rows per work item: the views' rows of one tile stay in cache across labels
+  // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is
+  // still lower: half the views are noisier, so on textured, unoccluded surfaces the whole patch must win.
+  float half_patch_penalty = 1.0f;
+  int tile_rows = 8;  // rows per work item: the views' rows of one tile stay in cache across labels
 };
 
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile (the
