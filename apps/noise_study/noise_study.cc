@@ -1,0 +1,291 @@
+#include "noise_study.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <opencv2/core.hpp>
+
+#include "../summary.h"
+#include "lfsp/core/atomic_file.h"
+#include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/progress.h"
+#include "lfsp/decode/capture_decoder.h"
+#include "lfsp/depth/depth_estimator.h"
+#include "lfsp/segment/baselines.h"
+#include "lfsp/segment/evaluate.h"
+#include "lfsp/segment/lfsp.h"
+#include "lfsp/segment/metrics.h"
+#include "lfsp/simulate/lenslet_camera.h"
+#include "lfsp/simulate/render.h"
+#include "lfsp/simulate/scene.h"
+#include "lfsp/simulate/simulate.h"
+#include "line_plot.h"
+
+namespace lfsp::noise_study {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The metrics plotted against noise, as named in segment::ScoreLabels.
+const std::vector<std::string> kPlottedMetrics = {"self_similarity",  "elr",
+                                                  "boundary_recall",  "undersegmentation_error",
+                                                  "labels_per_pixel", "achievable_segmentation_accuracy"};
+
+// A noisy light field with its ground truth.
+struct Trial {
+  LightField light_field;
+  Labels gt_labels;
+  DisparityMap gt_disparity;
+  std::vector<DisparityMap> gt_view_disparity;
+  int size = 16;
+};
+
+struct Row {
+  std::string noise;
+  double level = 0.0;  // sigma, or exposure
+  double x = 0.0;      // the plotted noise measure
+  std::string method;
+  nlohmann::json metrics;
+};
+
+DisparityRange RangeOf(const DisparityMap& disparity) {
+  DisparityRange range{INFINITY, -INFINITY};
+  for (int i = 0; i < disparity.width() * disparity.height(); ++i) {
+    const float d = disparity.data()[i];
+    if (!std::isfinite(d)) continue;
+    range.min = std::min(range.min, d);
+    range.max = std::max(range.max, d);
+  }
+  const float pad = 0.1f * (range.max - range.min) + 0.05f;
+  return {range.min - pad, range.max + pad};
+}
+
+// Depth from the noisy light field, then LFSP on it, and the per-view baselines, each scored against the truth.
+std::vector<std::pair<std::string, nlohmann::json>> SegmentAndScore(const Trial& trial, bool lsc) {
+  std::vector<std::pair<std::string, nlohmann::json>> scores;
+  auto score = [&](const std::string& method, const Labels& labels, double seconds) {
+    nlohmann::json metrics =
+        segment::ScoreLabels(labels, &trial.gt_labels, &trial.gt_disparity, &trial.gt_view_disparity, 2);
+    metrics["seconds"] = seconds;
+    scores.emplace_back(method, std::move(metrics));
+  };
+  using Clock = std::chrono::steady_clock;
+  auto start = Clock::now();
+  depth::DepthOptions depth_options;
+  depth_options.range = RangeOf(trial.gt_disparity);
+  const DisparityMap disparity = depth::EstimateDepth(trial.light_field, depth_options).disparity;
+  segment::LfspParams params;
+  params.size = trial.size;
+  score("lfsp", segment::SegmentLightField(trial.light_field, disparity, params).labels,
+        std::chrono::duration<double>(Clock::now() - start).count());
+
+  segment::BaselineParams baseline;
+  baseline.size = trial.size;
+  start = Clock::now();
+  const Labels slic = segment::SlicPerView(trial.light_field, baseline);
+  score("slic_per_view", slic, std::chrono::duration<double>(Clock::now() - start).count());
+  if (lsc) {
+    start = Clock::now();
+    const Labels lsc_labels = segment::LscPerView(trial.light_field, baseline);
+    score("lsc_per_view", lsc_labels, std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  return scores;
+}
+
+LightField WithGaussianNoise(const LightField& clean, double sigma, std::uint64_t seed) {
+  LightField noisy = clean;
+  if (sigma <= 0.0) return noisy;
+  cv::RNG random(seed);
+  cv::Mat all(1, static_cast<int>(noisy.size()), CV_32FC1, noisy.data());
+  cv::Mat noise(all.size(), CV_32FC1);
+  random.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+  all += noise;
+  cv::min(cv::max(all, 0.0), 1.0, all);
+  return noisy;
+}
+
+// Renders the lenslet capture at `exposure`, decodes it, and scales it back to the reference brightness.
+Trial LowLightTrial(const NoiseStudyOptions& options, double exposure, const fs::path& work) {
+  simulate::SimulateOptions simulate_options;
+  simulate_options.scene = options.scene;
+  simulate_options.camera = options.camera;
+  simulate_options.seed = options.seed;
+  simulate_options.capture.exposure = exposure;
+  const fs::path folder = work / ("exposure_" + std::to_string(exposure));
+  simulate::Simulate(simulate_options, folder);
+  fs::path capture;
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().stem() == "capture") capture = entry.path();
+  decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(capture, {});
+  Trial trial;
+  trial.light_field = std::move(decoded.light_field);
+  const float gain = static_cast<float>(options.exposures.front() / exposure);
+  for (std::size_t i = 0; i < trial.light_field.size(); ++i)
+    trial.light_field.data()[i] = std::min(1.0f, trial.light_field.data()[i] * gain);
+  Bundle truth = ReadBundle(folder / "ground_truth" / "decoded.h5");
+  if (!truth.labels || !truth.disparity) ThrowFileError(folder.string(), "simulated ground truth lacks labels");
+  if (!(truth.light_field.shape() == trial.light_field.shape()))
+    throw Error("decoded capture " + ToString(trial.light_field.shape()) + " does not match its ground truth " +
+                ToString(truth.light_field.shape()));
+  trial.gt_labels = std::move(*truth.labels);
+  trial.gt_disparity = std::move(*truth.disparity);
+  trial.gt_view_disparity = segment::PropagateDisparity(trial.gt_disparity, trial.light_field.shape());
+  trial.size = options.capture_size;
+  return trial;
+}
+
+std::string CsvValue(const nlohmann::json& value) {
+  if (value.is_number()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value.get<double>());
+    return text;
+  }
+  return "";
+}
+
+void WriteCsv(const std::vector<Row>& rows, const fs::path& path) {
+  std::vector<std::string> columns;
+  for (const Row& row : rows)
+    for (const auto& [key, value] : row.metrics.items())
+      if (value.is_number() && std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
+  AtomicOutput output(path);
+  {
+    std::ofstream file(output.temporary());
+    file << "noise,level,noise_measure,method";
+    for (const auto& column : columns) file << "," << column;
+    file << "\n";
+    for (const Row& row : rows) {
+      file << row.noise << "," << row.level << "," << row.x << "," << row.method;
+      for (const auto& column : columns)
+        file << "," << (row.metrics.contains(column) ? CsvValue(row.metrics[column]) : "");
+      file << "\n";
+    }
+    if (!file.flush()) ThrowFileError(path.string(), "write failed");
+  }
+  output.Commit();
+}
+
+std::vector<fs::path> WritePlots(const std::vector<Row>& rows, const std::string& noise, const std::string& x_label,
+                                 const fs::path& out) {
+  std::vector<double> x;
+  std::vector<std::string> methods;
+  for (const Row& row : rows) {
+    if (row.noise != noise) continue;
+    if (std::find(x.begin(), x.end(), row.x) == x.end()) x.push_back(row.x);
+    if (std::find(methods.begin(), methods.end(), row.method) == methods.end()) methods.push_back(row.method);
+  }
+  std::vector<fs::path> written;
+  for (const std::string& metric : kPlottedMetrics) {
+    std::vector<PlotSeries> series;
+    for (const std::string& method : methods) {
+      PlotSeries s{method, std::vector<double>(x.size(), NAN)};
+      for (const Row& row : rows)
+        if (row.noise == noise && row.method == method && row.metrics.contains(metric) &&
+            row.metrics[metric].is_number())
+          s.y[std::find(x.begin(), x.end(), row.x) - x.begin()] = row.metrics[metric].get<double>();
+      series.push_back(s);
+    }
+    const fs::path path = out / ("plot_" + noise + "_" + metric + ".png");
+    WriteImage(LinePlot(metric + " vs " + noise + " noise", x_label, metric, x, series), path);
+    written.push_back(path);
+  }
+  return written;
+}
+
+// How much each method's SS and ELR change from the cleanest to the noisiest level: the study's headline.
+nlohmann::ordered_json Degradation(const std::vector<Row>& rows) {
+  nlohmann::ordered_json out;
+  for (const std::string noise : {"image", "lowlight"}) {
+    std::map<std::string, std::pair<const Row*, const Row*>> ends;  // method -> (cleanest, noisiest)
+    for (const Row& row : rows) {
+      if (row.noise != noise) continue;
+      auto& [first, last] = ends[row.method];
+      if (first == nullptr || row.x < first->x) first = &row;
+      if (last == nullptr || row.x > last->x) last = &row;
+    }
+    for (const auto& [method, pair] : ends) {
+      for (const std::string metric : {"self_similarity", "elr"}) {
+        const auto& a = pair.first->metrics;
+        const auto& b = pair.second->metrics;
+        if (a.contains(metric) && b.contains(metric) && a[metric].is_number() && b[metric].is_number())
+          out[noise][method][metric + "_change"] = b[metric].get<double>() - a[metric].get<double>();
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  fs::create_directories(options.out);
+  std::vector<Row> rows;
+  Progress progress("noise study", options.sigmas.size() + options.exposures.size());
+
+  // Image noise on the ideal light field.
+  simulate::RenderOptions render;
+  render.nu = render.nv = options.views;
+  render.width = options.width;
+  render.height = options.height;
+  const simulate::Scene scene = simulate::SceneFromSpec(options.scene);
+  simulate::RenderedLightField ideal = simulate::RenderLightField(scene, render);
+  Trial clean;
+  clean.gt_labels = ideal.labels;
+  clean.gt_disparity = ideal.disparity;
+  clean.gt_view_disparity = ideal.view_disparity;
+  clean.size = options.size;
+  for (std::size_t i = 0; i < options.sigmas.size(); ++i) {
+    const double sigma = options.sigmas[i];
+    spdlog::info("image noise sigma {}", sigma);
+    Trial trial = clean;
+    trial.light_field = WithGaussianNoise(ideal.light_field, sigma, options.seed + i);
+    for (auto& [method, metrics] : SegmentAndScore(trial, options.lsc))
+      rows.push_back({"image", sigma, sigma, method, metrics});
+    progress.Tick();
+  }
+
+  // Low light at the sensor, through decode.
+  const simulate::CameraModel camera = simulate::CameraPreset(options.camera);
+  const fs::path work = options.out / "captures";
+  for (double exposure : options.exposures) {
+    const double photons = exposure * camera.full_well;
+    spdlog::info("low light: exposure {} ({:.0f} photons at white)", exposure, photons);
+    const Trial trial = LowLightTrial(options, exposure, work);
+    for (auto& [method, metrics] : SegmentAndScore(trial, options.lsc)) {
+      metrics["photons_at_white"] = photons;
+      rows.push_back({"lowlight", exposure, 1.0 / std::sqrt(photons), method, metrics});
+    }
+    progress.Tick();
+  }
+  progress.Finish();
+  fs::remove_all(work);
+
+  NoiseStudyResult result;
+  WriteCsv(rows, options.out / "noise_study.csv");
+  for (const auto& path : WritePlots(rows, "image", "Gaussian sigma", options.out)) result.plots.push_back(path);
+  for (const auto& path : WritePlots(rows, "lowlight", "shot noise 1/sqrt(photons at white)", options.out))
+    result.plots.push_back(path);
+
+  nlohmann::ordered_json& summary = result.summary;
+  summary["scene"] = options.scene;
+  summary["ideal_light_field"] = ToString(ideal.light_field.shape());
+  summary["camera"] = options.camera;
+  summary["sigmas"] = options.sigmas;
+  summary["exposures"] = options.exposures;
+  nlohmann::ordered_json results = nlohmann::ordered_json::array();
+  for (const Row& row : rows)
+    results.push_back({{"noise", row.noise}, {"level", row.level}, {"method", row.method}, {"metrics", row.metrics}});
+  summary["results"] = results;
+  summary["degradation"] = Degradation(rows);
+  summary["files"] = {"noise_study.csv", "plot_<noise>_<metric>.png"};
+  summary["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  cli::WriteJsonSummary(summary, options.out / "summary.json");
+  return result;
+}
+
+}  // namespace lfsp::noise_study
