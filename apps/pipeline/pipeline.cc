@@ -23,6 +23,7 @@
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/refocus.h"
 #include "lfsp/edit/selection.h"
+#include "lfsp/segment/evaluate.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
 #include "pipeline_report.h"
@@ -73,24 +74,6 @@ void PrepareOutputFolder(const fs::path& out) {
   if (ec) ThrowFileError(out.string(), "cannot create output folder: " + ec.message());
   std::ofstream marker(out / kRunMarker);
   if (!marker) ThrowFileError(out.string(), "cannot write into the output folder");
-}
-
-nlohmann::ordered_json SegmentationMetrics(const Bundle& input, const segment::LfspResult& result,
-                                           const std::vector<DisparityMap>* gt_view_disparity) {
-  nlohmann::ordered_json metrics;
-  metrics["superpixels"] = result.superpixels;
-  metrics["effective_label_ratio"] = segment::EffectiveLabelRatio(result.labels);
-  if (gt_view_disparity != nullptr) {
-    metrics["self_similarity_px"] = segment::SelfSimilarity(result.labels, *gt_view_disparity);
-    metrics["labels_per_pixel"] = segment::LabelsPerPixel(result.labels, *input.disparity, *gt_view_disparity);
-  }
-  if (input.labels) {
-    metrics["boundary_recall"] = segment::BoundaryRecall(result.labels, *input.labels);
-    metrics["undersegmentation_error"] = segment::UndersegmentationError(result.labels, *input.labels);
-    metrics["achievable_segmentation_accuracy"] = segment::AchievableSegmentationAccuracy(result.labels, *input.labels);
-  }
-  metrics["compactness"] = segment::Compactness(result.labels);
-  return metrics;
 }
 
 // Ground truth of a simulated capture, written by `lfsp simulate` beside it (ground_truth/decoded.h5), if its
@@ -243,8 +226,9 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
       metrics["depth"] = depth::ToJson(depth::EvaluateDisparity(depth_result.disparity, *bundle.disparity));
       gt_view_disparity = segment::PropagateDisparity(*bundle.disparity, light_field.shape());
     }
-    metrics["segmentation"] =
-        SegmentationMetrics(bundle, segmentation, bundle.disparity ? &gt_view_disparity : nullptr);
+    metrics["segmentation"] = segment::ScoreLabels(segmentation.labels, bundle.labels ? &*bundle.labels : nullptr,
+                                                   bundle.disparity ? &*bundle.disparity : nullptr,
+                                                   bundle.disparity ? &gt_view_disparity : nullptr, 2);
     return 0;
   });
 

@@ -63,7 +63,7 @@ TEST_F(PipelineEndToEnd, SummaryHasMetricsAgainstGroundTruthAndTimingsThatAddUp)
   const auto summary = nlohmann::json::parse(ReadBytes(Run() / "summary.json"));
   ASSERT_TRUE(summary.contains("metrics"));
   EXPECT_TRUE(summary["metrics"]["depth"]["all"].contains("badpix_0.07"));
-  EXPECT_DOUBLE_EQ(summary["metrics"]["segmentation"]["effective_label_ratio"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(summary["metrics"]["segmentation"]["elr"].get<double>(), 1.0);
   EXPECT_TRUE(summary["metrics"]["segmentation"].contains("boundary_recall"));
   double stages = 0.0;
   for (const auto& [stage, seconds] : summary["timings"].items()) stages += seconds.get<double>();
