@@ -95,9 +95,16 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_option("--compression", lib.compression_level, "gzip level of the .h5 outputs (0-9)")
       ->check(CLI::Range(0, 9))
       ->capture_default_str();
-  command->add_option("--storage", options->storage,
-                      "Sample type of the light fields in the .h5 outputs: float32, uint16 or uint8 (smaller, quantised)")
+  command
+      ->add_option("--storage", options->storage,
+                   "Sample type of the light fields in the .h5 outputs: float32, uint16 or uint8 (smaller, quantised)")
       ->check(CLI::IsMember({"float32", "uint16", "uint8"}))
+      ->capture_default_str();
+  command
+      ->add_option("--calibration", lib.calibration_poses,
+                   "Instead of the scene: a checkerboard at this many known poses (calibration/pose_NN/ with "
+                   "ground_truth.json); 0 = off")
+      ->check(CLI::Range(0, 100))
       ->capture_default_str();
   command->add_flag("--list-scenes", options->list_scenes, "List the built-in scenes and exit");
   command->add_option("--out", options->out, "Output folder (created if needed)");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lfsp/core/error.h"
+
 namespace lfsp::simulate {
 namespace {
 
@@ -62,7 +64,9 @@ RayTracer::RayTracer(const Scene& scene, int width, int height, float disparity_
     p.source = static_cast<int>(i);
     p.label = object.label;
     p.geometry = object.geometry;
-    if (object.geometry == SceneObject::Geometry::kPlane) {
+    if (object.geometry == SceneObject::Geometry::kBoard) {
+      PrepareBoard(object, k, p);
+    } else if (object.geometry == SceneObject::Geometry::kPlane) {
       p.support = object.shape.kind;
       p.b = k * object.slope[0] / w;
       p.c = k * object.slope[1] / h;
@@ -103,6 +107,8 @@ RayTracer::RayTracer(const Scene& scene, int width, int height, float disparity_
           break;
         }
       }
+    }
+    if (object.geometry != SceneObject::Geometry::kEllipsoid) {
       // Disparity bounds over the (image-clipped) bounding box corners.
       const float bx0 = std::max(p.x0, -w), bx1 = std::min(p.x1, 2 * w);
       const float by0 = std::max(p.y0, -h), by1 = std::min(p.y1, 2 * h);
@@ -132,6 +138,9 @@ RayTracer::RayTracer(const Scene& scene, int width, int height, float disparity_
   }
   std::stable_sort(objects_.begin(), objects_.end(),
                    [](const Prepared& l, const Prepared& r) { return l.dmax > r.dmax; });
+  prepared_of_.assign(objects_.size(), 0);
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    prepared_of_[static_cast<std::size_t>(objects_[i].source)] = static_cast<int>(i);
   fallback_disparity_ = k * scene.DisparityRange()[0];
 
   // Culling grid over view-pixel space, with a margin for rays that start outside the image.
@@ -178,7 +187,7 @@ bool RayTracer::Inside(const Prepared& p, float x, float y) const {
 }
 
 bool RayTracer::Intersect(const Prepared& p, float px, float py, float s, float t, RayHit& hit) const {
-  if (p.geometry == SceneObject::Geometry::kPlane) {
+  if (p.geometry != SceneObject::Geometry::kEllipsoid) {
     // d = a + b (px + s d) + c (py + t d)  =>  d (1 - b s - c t) = a + b px + c py.
     const float denominator = 1.0f - p.b * s - p.c * t;
     if (denominator <= 1e-6f) return false;
@@ -227,6 +236,13 @@ RayHit RayTracer::Trace(float px, float py, float s, float t) const {
 Rgb RayTracer::Shade(const RayHit& hit, float s, float t) const {
   if (hit.object < 0) return {0.0f, 0.0f, 0.0f};
   const SceneObject& object = scene_.objects[static_cast<std::size_t>(hit.object)];
+  if (object.geometry == SceneObject::Geometry::kBoard) {
+    Rgb colour =
+        ShadeBoard(objects_[static_cast<std::size_t>(prepared_of_[static_cast<std::size_t>(hit.object)])], hit);
+    if (transfer_ == Transfer::kLinear)
+      for (auto& c : colour) c = SrgbToLinear(c);
+    return colour;
+  }
   Rgb colour = object.texture.Evaluate((hit.x + 0.5f) / min_side_, (hit.y + 0.5f) / min_side_);
   if (object.specular) {
     const Specular& spec = *object.specular;
@@ -240,6 +256,64 @@ Rgb RayTracer::Shade(const RayHit& hit, float s, float t) const {
   if (transfer_ == Transfer::kLinear)
     for (auto& c : colour) c = SrgbToLinear(c);
   return colour;
+}
+
+void RayTracer::PrepareBoard(const SceneObject& object, float disparity_scale, Prepared& p) const {
+  // A 3D plane n . P = c seen through the rig: 1/Z = (n . ray) / c with ray = ((x-cx)/f, (y-cy)/f, 1), so the
+  // disparity d = fB (1/Z - 1/Z0) is affine in the centre-view pixel position (x, y).
+  p.board = object.board;
+  p.rig = scene_.rig;
+  p.scale = disparity_scale;
+  p.focal = scene_.rig.focal * static_cast<float>(width_);
+  p.pcx = 0.5f * static_cast<float>(width_ - 1);
+  p.pcy = 0.5f * static_cast<float>(height_ - 1);
+  p.origin = BoardToCamera(object.board, 0.0f, 0.0f);
+  const auto ex = BoardToCamera(object.board, 1.0f, 0.0f), ey = BoardToCamera(object.board, 0.0f, 1.0f);
+  for (int i = 0; i < 3; ++i) {
+    p.axis_x[static_cast<std::size_t>(i)] = ex[static_cast<std::size_t>(i)] - p.origin[static_cast<std::size_t>(i)];
+    p.axis_y[static_cast<std::size_t>(i)] = ey[static_cast<std::size_t>(i)] - p.origin[static_cast<std::size_t>(i)];
+  }
+  std::array<double, 3> n{p.axis_x[1] * p.axis_y[2] - p.axis_x[2] * p.axis_y[1],
+                          p.axis_x[2] * p.axis_y[0] - p.axis_x[0] * p.axis_y[2],
+                          p.axis_x[0] * p.axis_y[1] - p.axis_x[1] * p.axis_y[0]};
+  double c = n[0] * p.origin[0] + n[1] * p.origin[1] + n[2] * p.origin[2];
+  if (c < 0) {
+    for (auto& v : n) v = -v;
+    c = -c;
+  }
+  const double fb = p.rig.disparity_gain, f = p.focal;
+  p.a = static_cast<float>(disparity_scale *
+                           (fb / c * (n[2] - n[0] * p.pcx / f - n[1] * p.pcy / f) - fb / p.rig.focus_distance));
+  p.b = static_cast<float>(disparity_scale * fb * n[0] / (c * f));
+  p.c = static_cast<float>(disparity_scale * fb * n[1] / (c * f));
+  p.support = Shape::Kind::kPolygon;
+  p.x0 = p.y0 = 1e30f;
+  p.x1 = p.y1 = -1e30f;
+  for (const auto& q : BoardCornersInCamera(object.board, true)) {
+    if (!(q[2] > 0.0f)) throw Error("scene: board '" + object.name + "' reaches behind the camera");
+    const float x = p.focal * q[0] / q[2] + p.pcx, y = p.focal * q[1] / q[2] + p.pcy;
+    p.polygon.push_back({x, y});
+    p.x0 = std::min(p.x0, x);
+    p.x1 = std::max(p.x1, x);
+    p.y0 = std::min(p.y0, y);
+    p.y1 = std::max(p.y1, y);
+  }
+}
+
+Rgb RayTracer::ShadeBoard(const Prepared& p, const RayHit& hit) const {
+  const float d = p.scale != 0.0f ? hit.disparity / p.scale : hit.disparity;
+  const float z = p.rig.Depth(d);
+  const float point[3] = {(hit.x - p.pcx) / p.focal * z - p.origin[0], (hit.y - p.pcy) / p.focal * z - p.origin[1],
+                          z - p.origin[2]};
+  // Board coordinates: the axes are orthonormal (a rotation), so projecting on them inverts it.
+  const float bx = point[0] * p.axis_x[0] + point[1] * p.axis_x[1] + point[2] * p.axis_x[2];
+  const float by = point[0] * p.axis_y[0] + point[1] * p.axis_y[1] + point[2] * p.axis_y[2];
+  const float w = static_cast<float>(p.board.cols) * p.board.square;
+  const float h = static_cast<float>(p.board.rows) * p.board.square;
+  if (bx < 0.0f || by < 0.0f || bx >= w || by >= h) return {0.95f, 0.95f, 0.95f};  // white border
+  const long parity =
+      (static_cast<long>(std::floor(bx / p.board.square)) + static_cast<long>(std::floor(by / p.board.square))) & 1L;
+  return parity == 0 ? Rgb{0.05f, 0.05f, 0.05f} : Rgb{0.95f, 0.95f, 0.95f};
 }
 
 }  // namespace lfsp::simulate

@@ -37,7 +37,14 @@ class RayTracer {
     float disparity = 0, bulge = 0;             // ellipsoid
     float x0 = 0, y0 = 0, x1 = 0, y1 = 0;       // centre-view bounding box, pixels
     float dmin = 0, dmax = 0;                   // disparity bounds
+    // kBoard: the board's axes and origin in camera space, and the rig in this pixel frame.
+    std::array<float, 3> axis_x{}, axis_y{}, origin{};
+    float focal = 0, pcx = 0, pcy = 0, scale = 1;  // focal length and principal point, pixels
+    PinholeRig rig;
+    Board board;
   };
+  void PrepareBoard(const SceneObject& object, float disparity_scale, Prepared& p) const;
+  Rgb ShadeBoard(const Prepared& p, const RayHit& hit) const;
   bool Intersect(const Prepared& object, float px, float py, float s, float t, RayHit& hit) const;
   bool Inside(const Prepared& object, float x, float y) const;
   const std::vector<int>& CellObjects(float px, float py) const;
@@ -49,6 +56,7 @@ class RayTracer {
   Transfer transfer_;
   float fallback_disparity_ = 0;
   std::vector<Prepared> objects_;  // sorted by dmax, nearest first
+  std::vector<int> prepared_of_;   // Scene::objects index -> objects_ index
   int cell_size_ = 16;
   int cells_x_ = 0, cells_y_ = 0;
   float origin_x_ = 0, origin_y_ = 0;

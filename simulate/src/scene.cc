@@ -9,6 +9,41 @@
 #include "lfsp/core/error.h"
 
 namespace lfsp::simulate {
+
+std::array<float, 3> BoardToCamera(const Board& board, float bx, float by) {
+  // Rodrigues: R = I cos(a) + (1 - cos(a)) k k^T + sin(a) [k]x, with a = |r|, k = r / a.
+  const double rx = board.rotation[0], ry = board.rotation[1], rz = board.rotation[2];
+  const double a = std::sqrt(rx * rx + ry * ry + rz * rz);
+  double p[3] = {bx, by, 0.0};
+  double out[3] = {p[0], p[1], p[2]};
+  if (a > 1e-12) {
+    const double k[3] = {rx / a, ry / a, rz / a};
+    const double c = std::cos(a), s = std::sin(a);
+    const double kp = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+    const double cross[3] = {k[1] * p[2] - k[2] * p[1], k[2] * p[0] - k[0] * p[2], k[0] * p[1] - k[1] * p[0]};
+    for (int i = 0; i < 3; ++i) out[i] = p[i] * c + cross[i] * s + k[i] * kp * (1 - c);
+  }
+  return {static_cast<float>(out[0] + board.translation[0]), static_cast<float>(out[1] + board.translation[1]),
+          static_cast<float>(out[2] + board.translation[2])};
+}
+
+std::vector<std::array<float, 3>> BoardCornersInCamera(const Board& board, bool outline) {
+  std::vector<std::array<float, 3>> corners;
+  if (outline) {
+    // The outer edge of the white border, one square around the squares.
+    const float m = board.square;
+    const float w = board.cols * board.square, h = board.rows * board.square;
+    for (const auto& [bx, by] : {std::pair{-m, -m}, {w + m, -m}, {w + m, h + m}, {-m, h + m}})
+      corners.push_back(BoardToCamera(board, bx, by));
+    return corners;
+  }
+  for (int l = 1; l < board.rows; ++l)
+    for (int k = 1; k < board.cols; ++k)
+      corners.push_back(
+          BoardToCamera(board, static_cast<float>(k) * board.square, static_cast<float>(l) * board.square));
+  return corners;
+}
+
 namespace {
 
 // A bar from `a` to `b` of the given width (fraction of min(width, height)) as a 4-point polygon. The width is
@@ -108,8 +143,28 @@ SceneObject ObjectFromJson(const nlohmann::json& json, int index, const std::str
     object.bulge = ReadFloat(json, "bulge", object.bulge, where);
     if (!(object.radius > 0.0f)) throw Error(where + ".radius: must be > 0");
     if (!(object.bulge > 0.0f)) throw Error(where + ".bulge: must be > 0 (use a disc-shaped plane for a flat disc)");
+  } else if (type == "board") {
+    object.geometry = SceneObject::Geometry::kBoard;
+    Board& board = object.board;
+    board.rows = static_cast<int>(ReadFloat(json, "rows", static_cast<float>(board.rows), where));
+    board.cols = static_cast<int>(ReadFloat(json, "cols", static_cast<float>(board.cols), where));
+    board.square = ReadFloat(json, "square", board.square, where);
+    if (board.rows < 2 || board.cols < 2 || board.rows > 100 || board.cols > 100)
+      throw Error(where + ": board rows and cols must be 2..100");
+    if (!(board.square > 0.0f)) throw Error(where + ".square: must be > 0");
+    for (const char* key : {"rotation", "translation"}) {
+      if (!json.contains(key)) continue;
+      const auto& v = json.at(key);
+      if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+        throw Error(where + "." + key + ": expected [x, y, z]");
+      auto& target = std::string(key) == "rotation" ? board.rotation : board.translation;
+      for (int k = 0; k < 3; ++k) target[static_cast<std::size_t>(k)] = v[static_cast<std::size_t>(k)].get<float>();
+    }
+    if (!(board.translation[2] > 0.0f)) throw Error(where + ".translation: the board must be in front (z > 0)");
+    object.texture.kind = Texture::Kind::kChecker;
+    return object;
   } else {
-    throw Error(where + ".type: unknown object type '" + type + "' (expected plane or ellipsoid)");
+    throw Error(where + ".type: unknown object type '" + type + "' (expected plane, ellipsoid or board)");
   }
   if (!json.contains("texture")) throw Error(where + ".texture: missing");
   object.texture = TextureFromJson(json.at("texture"), base_dir, where + ".texture");
@@ -128,7 +183,15 @@ SceneObject ObjectFromJson(const nlohmann::json& json, int index, const std::str
 }
 
 // Disparity bounds of one object over its support (planes with unbounded support use the image square).
-std::array<float, 2> ObjectDisparityRange(const SceneObject& object) {
+std::array<float, 2> ObjectDisparityRange(const SceneObject& object, const PinholeRig& rig) {
+  if (object.geometry == SceneObject::Geometry::kBoard) {
+    std::array<float, 2> range{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()};
+    for (const auto& corner : BoardCornersInCamera(object.board, true)) {
+      const float d = rig.Disparity(corner[2]);
+      range = {std::min(range[0], d), std::max(range[1], d)};
+    }
+    return range;
+  }
   if (object.geometry == SceneObject::Geometry::kEllipsoid) return {object.disparity, object.disparity + object.bulge};
   std::vector<std::array<float, 2>> corners;
   switch (object.shape.kind) {
@@ -166,7 +229,7 @@ std::array<float, 2> ObjectDisparityRange(const SceneObject& object) {
 std::array<float, 2> Scene::DisparityRange() const {
   std::array<float, 2> range{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()};
   for (const auto& object : objects) {
-    const auto r = ObjectDisparityRange(object);
+    const auto r = ObjectDisparityRange(object, rig);
     range[0] = std::min(range[0], r[0]);
     range[1] = std::max(range[1], r[1]);
   }
@@ -185,6 +248,15 @@ Scene SceneFromJson(const nlohmann::json& json, const std::string& base_dir, con
   Scene scene;
   scene.name = json.value("name", std::string("scene"));
   scene.description = json.value("description", std::string());
+  if (json.contains("rig")) {
+    const auto& rig = json.at("rig");
+    const std::string w = where + ".rig";
+    scene.rig.focal = ReadFloat(rig, "focal", scene.rig.focal, w);
+    scene.rig.disparity_gain = ReadFloat(rig, "disparity_gain", scene.rig.disparity_gain, w);
+    scene.rig.focus_distance = ReadFloat(rig, "focus_distance", scene.rig.focus_distance, w);
+    if (!(scene.rig.focal > 0.0f && scene.rig.disparity_gain > 0.0f && scene.rig.focus_distance > 0.0f))
+      throw Error(w + ": focal, disparity_gain and focus_distance must be > 0");
+  }
   if (!json.contains("objects") || !json.at("objects").is_array() || json.at("objects").empty())
     throw Error(where + ".objects: expected a non-empty array");
   const auto& objects = json.at("objects");
@@ -210,12 +282,25 @@ nlohmann::json SceneToJson(const Scene& scene) {
   nlohmann::json json;
   json["name"] = scene.name;
   json["description"] = scene.description;
+  json["rig"] = {{"focal", scene.rig.focal},
+                 {"disparity_gain", scene.rig.disparity_gain},
+                 {"focus_distance", scene.rig.focus_distance}};
   json["objects"] = nlohmann::json::array();
   for (const auto& object : scene.objects) {
     nlohmann::json o;
     o["name"] = object.name;
     o["label"] = object.label;
     o["disparity"] = object.disparity;
+    if (object.geometry == SceneObject::Geometry::kBoard) {
+      o["type"] = "board";
+      o["rows"] = object.board.rows;
+      o["cols"] = object.board.cols;
+      o["square"] = object.board.square;
+      o["rotation"] = object.board.rotation;
+      o["translation"] = object.board.translation;
+      json["objects"].push_back(o);
+      continue;
+    }
     if (object.geometry == SceneObject::Geometry::kPlane) {
       o["type"] = "plane";
       o["shape"] = ShapeToJson(object.shape);

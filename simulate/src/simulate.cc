@@ -4,6 +4,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/decode/lfp_container.h"
+#include "lfsp/simulate/calibration_set.h"
 #include "lfsp/simulate/lytro_writer.h"
 #include "lfsp/simulate/render.h"
 
@@ -17,6 +18,73 @@ void WriteText(const std::string& text, const std::filesystem::path& path) {
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// whites/MOD_####.RAW + .TXT for every lens setting of the camera; returns their description.
+nlohmann::json WriteWhiteImages(const CameraModel& camera, std::uint64_t seed, const std::filesystem::path& out_dir,
+                                SimulateResult& result) {
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir / "whites", ec);
+  if (ec) ThrowFileError((out_dir / "whites").string(), "cannot create folder: " + ec.message());
+  nlohmann::json whites = nlohmann::json::array();
+  for (int k = 0; k < static_cast<int>(camera.white_settings.size()); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "MOD_%04d.RAW", k);
+    const RawCapture white = RenderWhiteImage(camera, k, seed);
+    WriteWhiteImage(camera, white, out_dir / "whites" / name);
+    result.files.push_back(std::filesystem::path("whites") / name);
+    result.files.push_back((std::filesystem::path("whites") / name).replace_extension(".TXT"));
+    whites.push_back({{"file", std::string("whites/") + name},
+                      {"zoomStep", white.setting.zoom_step},
+                      {"focusStep", white.setting.focus_step},
+                      {"spacing_px", white.lattice.spacing},
+                      {"origin_px", {white.lattice.origin_x, white.lattice.origin_y}},
+                      {"matches_capture", k == camera.capture_setting}});
+  }
+  return whites;
+}
+
+// The checkerboard set: one capture (or ideal light field) per pose, each with its calibration ground truth.
+void WriteCalibrationSet(const SimulateOptions& options, const std::filesystem::path& out_dir, SimulateResult& result) {
+  const auto boards = CalibrationBoards(options.calibration_poses);
+  const BundleWriteOptions bundle_options{options.ground_truth_storage, options.compression_level};
+  nlohmann::json poses = nlohmann::json::array();
+  for (std::size_t k = 0; k < boards.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "pose_%02zu", k);
+    const std::filesystem::path folder = std::filesystem::path("calibration") / name;
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir / folder, ec);
+    if (ec) ThrowFileError((out_dir / folder).string(), "cannot create folder: " + ec.message());
+    const Scene scene = CalibrationScene(boards[k], CalibrationRig());
+    nlohmann::json truth;
+    if (options.ideal_only) {
+      RenderOptions render;
+      render.nu = render.nv = options.views;
+      render.width = options.width;
+      render.height = options.height;
+      render.supersampling = options.supersampling;
+      render.per_view_disparity = false;
+      WriteBundle(ToBundle(RenderLightField(scene, render), scene), out_dir / folder / "ideal.h5", bundle_options);
+      result.files.push_back(folder / "ideal.h5");
+      truth = CalibrationGroundTruth(scene, options.width, options.height);
+    } else {
+      const CameraModel camera = CameraPreset(options.camera);
+      CaptureOptions capture = options.capture;
+      capture.seed = options.seed + k;
+      const RawCapture raw = RenderRawCapture(scene, camera, capture);
+      const std::string capture_name = CaptureFileName(camera);
+      decode::WriteLfpContainer(BuildCaptureContainer(camera, raw), out_dir / folder / capture_name);
+      result.files.push_back(folder / capture_name);
+      // Intrinsics in the decoded grid's pixel frame (what a decoder outputs), plus the sensor geometry.
+      truth = CalibrationGroundTruth(scene, raw.grid.width, raw.grid.height);
+      truth["lenslet_geometry"] = LensletGeometryJson(camera, raw);
+    }
+    WriteText(truth.dump(2), out_dir / folder / "ground_truth.json");
+    result.files.push_back(folder / "ground_truth.json");
+    poses.push_back(folder.generic_string());
+  }
+  result.summary["calibration_poses"] = poses;
 }
 
 }  // namespace
@@ -34,11 +102,18 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
   summary["seed"] = options.seed;
   const auto range = scene.DisparityRange();
   summary["scene_disparity_range"] = {range[0], range[1]};
-  WriteText(SceneToJson(scene).dump(2), out_dir / "scene.json");
-  result.files.push_back("scene.json");
+  if (options.calibration_poses == 0) {  // calibration sets describe their boards in each ground_truth.json
+    WriteText(SceneToJson(scene).dump(2), out_dir / "scene.json");
+    result.files.push_back("scene.json");
+  }
   const BundleWriteOptions bundle_options{options.ground_truth_storage, options.compression_level};
 
-  if (options.ideal_only) {
+  if (options.calibration_poses > 0) {
+    // The checkerboard set (the scene is not rendered), then white images as for any capture.
+    WriteCalibrationSet(options, out_dir, result);
+    if (!options.ideal_only && options.white_images)
+      summary["white_images"] = WriteWhiteImages(CameraPreset(options.camera), options.seed, out_dir, result);
+  } else if (options.ideal_only) {
     RenderOptions render;
     render.nu = render.nv = options.views;
     render.width = options.width;
@@ -65,24 +140,7 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
 
     if (options.white_images) {
       t0 = std::chrono::steady_clock::now();
-      std::filesystem::create_directories(out_dir / "whites", ec);
-      if (ec) ThrowFileError((out_dir / "whites").string(), "cannot create folder: " + ec.message());
-      nlohmann::json whites = nlohmann::json::array();
-      for (int k = 0; k < static_cast<int>(camera.white_settings.size()); ++k) {
-        char name[32];
-        std::snprintf(name, sizeof name, "MOD_%04d.RAW", k);
-        const RawCapture white = RenderWhiteImage(camera, k, options.seed);
-        WriteWhiteImage(camera, white, out_dir / "whites" / name);
-        result.files.push_back(std::filesystem::path("whites") / name);
-        result.files.push_back((std::filesystem::path("whites") / name).replace_extension(".TXT"));
-        whites.push_back({{"file", std::string("whites/") + name},
-                          {"zoomStep", white.setting.zoom_step},
-                          {"focusStep", white.setting.focus_step},
-                          {"spacing_px", white.lattice.spacing},
-                          {"origin_px", {white.lattice.origin_x, white.lattice.origin_y}},
-                          {"matches_capture", k == camera.capture_setting}});
-      }
-      summary["white_images"] = whites;
+      summary["white_images"] = WriteWhiteImages(camera, options.seed, out_dir, result);
       summary["timings_s"]["render_whites"] = SecondsSince(t0);
     }
 

@@ -37,8 +37,37 @@ struct Specular {
   float shift = 0.02f;
 };
 
+// A pinhole camera grid behind the disparity space, for scenes placed in metres (calibration boards): view (s, t)
+// is a pinhole at (s B, t B, 0) looking along +Z, focal length f = focal * width pixels, principal point at the image
+// centre, images sheared so the plane Z = focus_distance has zero disparity: d = fB (1/Z - 1/focus_distance) with
+// fB = disparity_gain (pixels * metres), independent of the rendered resolution like every scene disparity.
+struct PinholeRig {
+  float focal = 1.0f;           // focal length as a multiple of the image width
+  float disparity_gain = 0.6f;  // fB, pixels per view step times metres
+  float focus_distance = 0.5f;  // m
+
+  float Disparity(float z) const { return disparity_gain * (1.0f / z - 1.0f / focus_distance); }
+  float Depth(float disparity) const { return disparity_gain / (disparity + disparity_gain / focus_distance); }
+};
+
+// A planar checkerboard at a known pose: board point (bx, by, 0) (metres, origin at the top-left corner of the
+// squares, x right, y down) is at camera point R(rotation) * (bx, by, 0) + translation. Rendered with a one-square
+// white border. Its rows x cols squares have (rows-1) x (cols-1) inner corners.
+struct Board {
+  int rows = 6;
+  int cols = 8;
+  float square = 0.02f;                                    // m
+  std::array<float, 3> rotation{0, 0, 0};                  // Rodrigues vector, radians
+  std::array<float, 3> translation{-0.08f, -0.06f, 0.5f};  // m
+};
+
+// Camera coordinates (metres) of board point (bx, by, 0).
+std::array<float, 3> BoardToCamera(const Board& board, float bx, float by);
+// The inner corners, row by row ((rows-1) x (cols-1)), or with `outline` the 4 corners of the white border.
+std::vector<std::array<float, 3>> BoardCornersInCamera(const Board& board, bool outline = false);
+
 struct SceneObject {
-  enum class Geometry { kPlane, kEllipsoid };
+  enum class Geometry { kPlane, kEllipsoid, kBoard };
   std::string name;
   int label = 0;  // ground-truth object label (>= 0)
   Geometry geometry = Geometry::kPlane;
@@ -56,12 +85,16 @@ struct SceneObject {
   std::array<float, 2> centre{0.5f, 0.5f};
   float radius = 0.1f;
   float bulge = 0.5f;
+
+  // kBoard: a checkerboard at a pose, seen through Scene::rig (texture unused).
+  Board board;
 };
 
 struct Scene {
   std::string name;
   std::string description;
   std::vector<SceneObject> objects;  // the first object is usually a background plane covering everything
+  PinholeRig rig;                    // used by boards (and to report metric intrinsics)
 
   // Range of disparities present (analytic bounds over all objects).
   std::array<float, 2> DisparityRange() const;

@@ -26,6 +26,7 @@ struct SimulateOptions {
   bool white_images = true;            // write whites/MOD_####.RAW + .TXT for every lens setting
   SampleStorage ground_truth_storage = SampleStorage::kFloat32;
   int compression_level = 0;  // gzip level of the .h5 files (0-9)
+  int calibration_poses = 0;  // > 0: instead of the scene, a checkerboard at this many known poses
 };
 
 struct SimulateResult {
@@ -38,7 +39,9 @@ struct SimulateResult {
 //   otherwise:  capture.LFR (Illum) / capture.lfp (F01); whites/MOD_####.RAW + .TXT; scene.json;
 //               ground_truth/decoded.h5 (ideal LF on the decoded grid, linear, weights, disparity, labels) and
 //               ground_truth/lenslet_geometry.json.
-// Same options and seed -> byte-identical files.
+//   calibration_poses > 0: calibration/pose_NN/ holds each checkerboard capture (or ideal.h5 with --ideal-only) and
+//               its ground_truth.json (intrinsics, pose, corners; see CalibrationGroundTruth), instead of the scene.
+// Same options and seed -> byte-identical files (except HDF5 object timestamps inside the .h5 files).
 SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::path& out_dir);
 
 }  // namespace lfsp::simulate
