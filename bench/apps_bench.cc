@@ -1,0 +1,73 @@
+// Whole commands, timed end to end through the `lfsp` executable: the pipeline on the bundled sample and the
+// noise study (issue 8 targets).
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "bench_case.h"
+
+namespace lfsp::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+void RunLfsp(const std::string& arguments) {
+  const std::string command = std::string(LFSP_BINARY_PATH) + " -q " + arguments + " > /dev/null";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+std::string Fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "apps";
+  c.name = "pipeline-mini-illum";
+  c.input = "samples/mini-illum capture (1024x768 -> 15x15x60x80)";
+  c.target = "<= 15 s";
+  c.repetitions = 3;
+  c.run = [] {
+    const fs::path out = fs::temp_directory_path() / "lfsp_bench_pipeline";
+    RunLfsp("pipeline --out " + out.string() + " --size 8 --recolor 'at=40,30;hue=150'");
+    const nlohmann::json summary = ReadJson(out / "summary.json");
+    double stages = 0.0;
+    for (const auto& [stage, seconds] : summary["timings"].items()) stages += seconds.get<double>();
+    return "stages/wall " + Fixed(stages / summary["wall_seconds"].get<double>(), 3) + ", BadPix0.07 " +
+           Fixed(summary["metrics"]["depth"]["all"]["badpix_0.07"].get<double>(), 1) + "%, SS " +
+           Fixed(summary["metrics"]["segmentation"]["self_similarity"].get<double>(), 2) + " px";
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "apps";
+  c.name = "noise-study";
+  c.input = "planes 9x9x128x128 + mini-illum captures, 5+4 levels";
+  c.target = "<= 600 s";
+  c.repetitions = 1;
+  c.run = [] {
+    const fs::path out = fs::temp_directory_path() / "lfsp_bench_noise";
+    fs::remove_all(out);
+    RunLfsp("noise-study --out " + out.string());
+    const nlohmann::json degradation = ReadJson(out / "summary.json")["degradation"]["image"];
+    return "SS change at sigma 0.08: lfsp " + Fixed(degradation["lfsp"]["self_similarity_change"].get<double>(), 2) +
+           ", slic " + Fixed(degradation["slic_per_view"]["self_similarity_change"].get<double>(), 2) + " px";
+  };
+  return c;
+}
+
+}  // namespace lfsp::bench
