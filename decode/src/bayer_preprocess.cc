@@ -15,47 +15,12 @@ cv::Mat ApplyLevels(const RawImage& raw, const PhaseLevels& levels) {
   for (int y = 0; y < raw.height; ++y) {
     const std::uint16_t* in = raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width);
     float* out = bayer.ptr<float>(y);
-    const std::size_t row_phase = 2 * static_cast<std::size_t>(y & 1);
-    const float black0 = levels.black[row_phase], black1 = levels.black[row_phase + 1];
-    const float scale0 = levels.scale[row_phase], scale1 = levels.scale[row_phase + 1];
-    for (int x = 0; x + 1 < raw.width; x += 2) {
-      out[x] = std::max(0.0f, (static_cast<float>(in[x]) - black0) * scale0);
-      out[x + 1] = std::max(0.0f, (static_cast<float>(in[x + 1]) - black1) * scale1);
+    for (int x = 0; x < raw.width; ++x) {
+      const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
+      out[x] = std::max(0.0f, (static_cast<float>(in[x]) - levels.black[phase]) * levels.scale[phase]);
     }
-    if (raw.width & 1) out[raw.width - 1] = std::max(0.0f, (static_cast<float>(in[raw.width - 1]) - black0) * scale0);
   }
   return bayer;
-}
-
-long CorrectHotPixels(cv::Mat& bayer, float margin) {
-  struct Fix {
-    int x;
-    int y;
-    float value;
-  };
-  const int width = bayer.cols, height = bayer.rows;
-  std::vector<std::vector<Fix>> fixes(static_cast<std::size_t>(height));
-#pragma omp parallel for schedule(static)
-  for (int y = 2; y < height - 2; ++y) {
-    const float* row = bayer.ptr<float>(y);
-    const float* up = bayer.ptr<float>(y - 2);
-    const float* down = bayer.ptr<float>(y + 2);
-    for (int x = 2; x < width - 2; ++x) {
-      const float value = row[x];
-      // Cheap rejection first: most pixels are not above their left/right neighbours by the margin.
-      if (value - margin <= row[x - 2] || value - margin <= row[x + 2]) continue;
-      const float neighbours = std::max({up[x - 2], up[x], up[x + 2], down[x - 2], down[x], down[x + 2]});
-      if (value - margin <= neighbours) continue;
-      fixes[static_cast<std::size_t>(y)].push_back({x, y, 0.25f * (row[x - 2] + row[x + 2] + up[x] + down[x])});
-    }
-  }
-  long count = 0;
-  for (const auto& row : fixes)
-    for (const Fix& fix : row) {
-      bayer.at<float>(fix.y, fix.x) = fix.value;
-      ++count;
-    }
-  return count;
 }
 
 double Percentile999(const cv::Mat& image, float top) {
@@ -81,13 +46,8 @@ double Percentile999(const cv::Mat& image, float top) {
   return (bin + 1.0) * top / kBins;
 }
 
-void Devignette(cv::Mat& bayer, const RawImage& white, const PhaseLevels& white_levels,
-                const std::array<float, 4>& white_gain, float min_white, const std::string& source) {
-  if (white.width != bayer.cols || white.height != bayer.rows || white.pixels.size() != white.PixelCount())
-    throw Error(source + ": white image is " + std::to_string(white.width) + "x" + std::to_string(white.height) +
-                ", the capture " + std::to_string(bayer.cols) + "x" + std::to_string(bayer.rows) +
-                ": they must come from the same sensor");
-  // The levelled, gain-corrected white image, then its 99.9th percentile.
+cv::Mat InverseWhite(const RawImage& white, const PhaseLevels& white_levels, const std::array<float, 4>& white_gain,
+                     float min_white, const std::string& source) {
   cv::Mat levelled = ApplyLevels(white, white_levels);
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < levelled.rows; ++y) {
@@ -99,11 +59,50 @@ void Devignette(cv::Mat& bayer, const RawImage& white, const PhaseLevels& white_
   if (!(peak > 0.0)) throw Error(source + ": white image is black");
   const auto inverse_peak = static_cast<float>(1.0 / peak);
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < bayer.rows; ++y) {
-    float* row = bayer.ptr<float>(y);
-    const float* w = levelled.ptr<float>(y);
-    for (int x = 0; x < bayer.cols; ++x) row[x] /= std::max(min_white, w[x] * inverse_peak);
+  for (int y = 0; y < levelled.rows; ++y) {
+    float* row = levelled.ptr<float>(y);
+    for (int x = 0; x < levelled.cols; ++x) row[x] = 1.0f / std::max(min_white, row[x] * inverse_peak);
   }
+  return levelled;
+}
+
+cv::Mat LevelAndDevignette(const RawImage& raw, const PhaseLevels& levels, const cv::Mat& inverse_white,
+                           float hot_margin, long& hot_pixels) {
+  const int width = raw.width, height = raw.height;
+  if (inverse_white.cols != width || inverse_white.rows != height)
+    throw Error("white image and capture differ in size: they must come from the same sensor");
+  cv::Mat bayer(height, width, CV_32F);
+  long found = 0;
+  auto row_of = [&](int y) {
+    return raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+  };
+#pragma omp parallel for schedule(static) reduction(+ : found)
+  for (int y = 0; y < height; ++y) {
+    const std::uint16_t* row = row_of(y);
+    const bool interior_row = hot_margin > 0.0f && y >= 2 && y < height - 2;
+    const std::uint16_t* up = interior_row ? row_of(y - 2) : nullptr;
+    const std::uint16_t* down = interior_row ? row_of(y + 2) : nullptr;
+    const float* inverse = inverse_white.ptr<float>(y);
+    float* out = bayer.ptr<float>(y);
+    // Same-colour neighbours share the phase and so the levels: compare raw values, margin in raw units.
+    const std::size_t row_phase = 2 * static_cast<std::size_t>(y & 1);
+    const float margin[2] = {hot_margin / levels.scale[row_phase], hot_margin / levels.scale[row_phase + 1]};
+    for (int x = 0; x < width; ++x) {
+      const std::size_t phase = row_phase + static_cast<std::size_t>(x & 1);
+      auto value = static_cast<float>(row[x]);
+      if (interior_row && x >= 2 && x < width - 2) {
+        const float limit = value - margin[x & 1];
+        if (limit > row[x - 2] && limit > row[x + 2] && limit > up[x] && limit > down[x] && limit > up[x - 2] &&
+            limit > up[x + 2] && limit > down[x - 2] && limit > down[x + 2]) {
+          value = 0.25f * (static_cast<float>(row[x - 2]) + row[x + 2] + up[x] + down[x]);
+          ++found;
+        }
+      }
+      out[x] = std::max(0.0f, (value - levels.black[phase]) * levels.scale[phase]) * inverse[x];
+    }
+  }
+  hot_pixels = found;
+  return bayer;
 }
 
 }  // namespace lfsp::decode

@@ -45,10 +45,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
 
   // The lenslet grid, fitted on the white image, starting from its micro-lens description (or the capture's).
   step = std::chrono::steady_clock::now();
-  const RawFormat& white_format = white_metadata.RequireRawFormat();
-  const cv::Mat grey = WhiteImageToGrey(white, white_format, white_metadata.source);
+  const PreparedWhite prepared = PrepareWhite(white, white_metadata, options.decode.colour, options.decode.min_white);
   const LytroMetadata& mla_source = white_metadata.mla ? white_metadata : metadata;
-  const GridEstimate estimate = EstimateLensletGrid(grey, GuessFromMetadata(mla_source, white.width, white.height));
+  const GridEstimate estimate =
+      EstimateLensletGrid(prepared.grey, GuessFromMetadata(mla_source, white.width, white.height));
   const double grid_seconds = SecondsSince(step);
   spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
@@ -56,7 +56,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
 
   CaptureDecodeResult result;
   DecodeReport report;
-  result.light_field = DecodeLenslet(raw, metadata, white, white_metadata, estimate.grid, options.decode, &report);
+  result.light_field = DecodeLenslet(raw, metadata, prepared, estimate.grid, options.decode, &report);
   result.light_field.metadata["decode"]["white_choice"] = choice.explanation;
 
   const LightFieldShape& shape = result.light_field.shape();
@@ -76,7 +76,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
       {"seconds",
        {{"read", read_seconds},
         {"white_image", white_seconds},
-        {"grid", grid_seconds},
+        {"white_preparation_and_grid", grid_seconds},
         {"total", SecondsSince(start)}}}};
   return result;
 }

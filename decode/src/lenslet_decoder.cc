@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
+#include <future>
 #include <opencv2/core.hpp>
 
 #include "bayer_preprocess.h"
@@ -14,18 +16,30 @@
 namespace lfsp::decode {
 namespace {
 
+// CPU time of the whole process (all threads): with the wall time, it shows how well a step uses the cores.
+double ProcessCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
 class StepTimer {
  public:
-  explicit StepTimer(DecodeReport& report) : report_(report), start_(std::chrono::steady_clock::now()) {}
+  explicit StepTimer(DecodeReport& report)
+      : report_(report), start_(std::chrono::steady_clock::now()), cpu_start_(ProcessCpuSeconds()) {}
   void Lap(const std::string& step) {
     const auto now = std::chrono::steady_clock::now();
+    const double cpu = ProcessCpuSeconds();
     report_.seconds[step] = std::chrono::duration<double>(now - start_).count();
+    report_.cpu_seconds[step] = cpu - cpu_start_;
     start_ = now;
+    cpu_start_ = cpu;
   }
 
  private:
   DecodeReport& report_;
   std::chrono::steady_clock::time_point start_;
+  double cpu_start_;
 };
 
 void CheckSize(const RawImage& image, int width, int height, const std::string& what) {
@@ -81,63 +95,6 @@ std::array<float, 9> CameraColourMatrix(const LytroMetadata& metadata) {
   return matrix;
 }
 
-// sRGB encoding through a table (the curve is smooth; 4096 linear segments are exact to ~1e-5).
-class SrgbTable {
- public:
-  SrgbTable() {
-    for (int k = 0; k <= kSize; ++k) {
-      const double linear = static_cast<double>(k) / kSize;
-      table_[static_cast<std::size_t>(k)] =
-          static_cast<float>(linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
-    }
-  }
-  float operator()(float linear) const {
-    const float position = std::clamp(linear, 0.0f, 1.0f) * kSize;
-    const int k = std::min(kSize - 1, static_cast<int>(position));
-    const float f = position - static_cast<float>(k);
-    return table_[static_cast<std::size_t>(k)] +
-           f * (table_[static_cast<std::size_t>(k) + 1] - table_[static_cast<std::size_t>(k)]);
-  }
-
- private:
-  static constexpr int kSize = 4096;
-  std::array<float, kSize + 1> table_{};
-};
-
-// Applies the colour matrix (camera mode), scales so the brightest well-lit ray is at most 1 (no highlight is
-// clipped: the whole light field is darkened instead), clamps the rest (unlit rays between micro-images) and encodes.
-double FinishColour(LightField& light_field, ColourMode mode, const std::array<float, 9>& matrix) {
-  float* data = light_field.data();
-  const float* weights = light_field.weights().data();
-  const std::size_t rays = light_field.weights().size();
-  float brightest = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : brightest)
-  for (std::size_t k = 0; k < rays; ++k) {
-    float* p = data + 3 * k;
-    if (mode == ColourMode::kCamera) {
-      const float r = p[0], g = p[1], b = p[2];
-      p[0] = std::max(0.0f, matrix[0] * r + matrix[1] * g + matrix[2] * b);
-      p[1] = std::max(0.0f, matrix[3] * r + matrix[4] * g + matrix[5] * b);
-      p[2] = std::max(0.0f, matrix[6] * r + matrix[7] * g + matrix[8] * b);
-    }
-    if (weights[k] >= 0.5f) brightest = std::max({brightest, p[0], p[1], p[2]});
-  }
-  const double scale = brightest > 1.0f ? 1.0 / brightest : 1.0;
-  const auto scale_f = static_cast<float>(scale);
-  static const SrgbTable srgb;
-  float* weights_out = light_field.weights().data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < rays; ++k) {
-    float* p = data + 3 * k;
-    for (int c = 0; c < 3; ++c) {
-      const float value = std::min(1.0f, p[c] * scale_f);
-      p[c] = mode == ColourMode::kCamera ? srgb(value) : value;
-    }
-    weights_out[k] = std::clamp(weights_out[k], 0.0f, 1.0f);
-  }
-  return scale;
-}
-
 }  // namespace
 
 std::string_view ToString(ColourMode mode) { return mode == ColourMode::kLinear ? "linear" : "camera"; }
@@ -162,16 +119,43 @@ DecodedGeometry DecodedGeometryFor(const LensletGrid& grid) {
 }
 
 nlohmann::json DecodeReport::ToJson() const {
-  return {{"demosaic", demosaic},
-          {"colour", colour},
-          {"hot_pixels_corrected", hot_pixels_corrected},
-          {"output_scale", output_scale},
-          {"seconds", seconds}};
+  return {{"demosaic", demosaic},         {"colour", colour},   {"hot_pixels_corrected", hot_pixels_corrected},
+          {"output_scale", output_scale}, {"seconds", seconds}, {"cpu_seconds", cpu_seconds}};
+}
+
+PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
+                           double min_white) {
+  if (!(min_white > 0.0 && min_white < 1.0)) throw Error("min_white must be in (0, 1)");
+  PreparedWhite prepared;
+  prepared.source = white_metadata.source;
+  prepared.format = white_metadata.RequireRawFormat();
+  prepared.colour = colour;
+  if (white.width != prepared.format.width || white.height != prepared.format.height ||
+      white.pixels.size() != white.PixelCount())
+    throw Error(white_metadata.source + ": raw image is " + std::to_string(white.width) + "x" +
+                std::to_string(white.height) + " but the metadata says " + std::to_string(prepared.format.width) + "x" +
+                std::to_string(prepared.format.height));
+  const PhaseLevels levels = LevelsOf(prepared.format, prepared.source);
+  const std::array<float, 4> gains = WhiteGains(colour, white, white_metadata, levels, prepared.format.mosaic);
+  prepared.inverse = InverseWhite(white, levels, gains, static_cast<float>(min_white), prepared.source);
+  prepared.grey = WhiteImageToGrey(white, prepared.format, prepared.source);
+  return prepared;
 }
 
 LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const RawImage& white,
                          const LytroMetadata& white_metadata, const LensletGrid& grid, const DecodeOptions& options,
                          DecodeReport* report) {
+  CheckSize(white, grid.sensor_width, grid.sensor_height, white_metadata.source);
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedWhite prepared = PrepareWhite(white, white_metadata, options.colour, options.min_white);
+  const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  LightField light_field = DecodeLenslet(capture, capture_metadata, prepared, grid, options, report);
+  if (report) report->seconds["prepare_white"] = prepare_seconds;
+  return light_field;
+}
+
+LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
+                         const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report) {
   DecodeReport local_report;
   DecodeReport& out_report = report ? *report : local_report;
   out_report = {};
@@ -179,54 +163,63 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report.colour = std::string(ToString(options.colour));
   StepTimer timer(out_report);
   CheckSize(capture, grid.sensor_width, grid.sensor_height, capture_metadata.source);
-  CheckSize(white, grid.sensor_width, grid.sensor_height, white_metadata.source);
+  if (white.inverse.cols != grid.sensor_width || white.inverse.rows != grid.sensor_height ||
+      white.grey.size() != white.inverse.size())
+    throw Error(white.source + ": white image is " + std::to_string(white.inverse.cols) + "x" +
+                std::to_string(white.inverse.rows) + ", the lenslet grid's sensor " +
+                std::to_string(grid.sensor_width) + "x" + std::to_string(grid.sensor_height));
+  if (white.colour != options.colour) throw Error(white.source + ": white image was prepared for another colour mode");
   const RawFormat& capture_format = capture_metadata.RequireRawFormat();
-  const RawFormat& white_format = white_metadata.RequireRawFormat();
-  if (capture_format.mosaic != white_format.mosaic)
-    throw Error(white_metadata.source + ": Bayer pattern " + std::string(ToString(white_format.mosaic)) +
+  if (capture_format.mosaic != white.format.mosaic)
+    throw Error(white.source + ": Bayer pattern " + std::string(ToString(white.format.mosaic)) +
                 " differs from the capture's " + std::string(ToString(capture_format.mosaic)));
   const DecodedGeometry geometry = DecodedGeometryFor(grid);
 
-  // 1. Levels, hot pixels, devignetting (Bayer domain).
+  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others prepare the
+  // sensor image: the fill is serial, the steps below are parallel.
+  LightFieldShape shape;
+  shape.nu = shape.nv = geometry.views;
+  shape.width = geometry.width;
+  shape.height = geometry.height;
+  shape.channels = 3;
+  std::future<LightField> allocation = std::async(std::launch::async, [shape] {
+    LightField allocated(shape);
+    allocated.EnableWeights(0.0f);
+    return allocated;
+  });
+
+  // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
   const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
-  const PhaseLevels white_levels = LevelsOf(white_format, white_metadata.source);
-  cv::Mat bayer = ApplyLevels(capture, capture_levels);
-  timer.Lap("levels");
-  if (options.correct_hot_pixels)
-    out_report.hot_pixels_corrected = CorrectHotPixels(bayer, static_cast<float>(options.hot_pixel_margin));
-  timer.Lap("hot_pixels");
-  const std::array<float, 4> white_gains =
-      WhiteGains(options.colour, white, white_metadata, white_levels, white_format.mosaic);
-  Devignette(bayer, white, white_levels, white_gains, static_cast<float>(options.min_white), white_metadata.source);
-  const cv::Mat grey_white = WhiteImageToGrey(white, white_format, white_metadata.source);
-  timer.Lap("devignette");
+  cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
+                                     options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
+                                     out_report.hot_pixels_corrected);
+  timer.Lap("levels_hot_pixels_devignette");
 
   // 2. Demosaic.
   const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic);
   bayer.release();
   timer.Lap("demosaic");
 
-  // 3. One interpolation pass into the 4D grid.
-  LightFieldShape shape;
-  shape.nu = shape.nv = geometry.views;
-  shape.width = geometry.width;
-  shape.height = geometry.height;
-  shape.channels = 3;
-  LightField light_field(shape);
-  light_field.EnableWeights(0.0f);
-  timer.Lap("allocate");
-  SliceLensletImage(rgb, grey_white, grid, geometry, light_field);
-  SoftenRowAlternation(light_field, static_cast<float>(options.dehex));
-  timer.Lap("slice");
+  // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
+  //    never clipped: the whole light field is darkened instead).
+  RayColour colour;
+  if (options.colour == ColourMode::kCamera) colour.matrix = CameraColourMatrix(capture_metadata);
+  const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
+  colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
+  out_report.output_scale = colour.scale;
+  timer.Lap("exposure");
 
-  // 4. Colour.
-  const std::array<float, 9> matrix = CameraColourMatrix(capture_metadata);
-  out_report.output_scale = FinishColour(light_field, options.colour, matrix);
+  // 4. One interpolation pass into the 4D grid, then the row-alternation softening and encoding.
+  LightField light_field = allocation.get();
+  timer.Lap("allocate_wait");
+  SliceLensletImage(rgb, white.grey, grid, geometry, colour, light_field);
+  timer.Lap("slice");
+  SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
-  timer.Lap("colour");
+  timer.Lap("soften_encode");
 
   light_field.metadata["decode"] = {
-      {"source", capture_metadata.source},       {"white_image", white_metadata.source},
+      {"source", capture_metadata.source},       {"white_image", white.source},
       {"demosaic", out_report.demosaic},         {"colour", out_report.colour},
       {"output_scale", out_report.output_scale}, {"hot_pixels_corrected", out_report.hot_pixels_corrected},
       {"view_step_pixels", geometry.view_step},  {"grid_spacing_x", grid.spacing_x},

@@ -34,8 +34,8 @@ inline void CubicWeights(float f, float* w) {
   w[3] = 0.5f * f3 - 0.5f * f2;
 }
 
-// Where each output column x of a lens row takes its samples: lens index of the first of 4 taps (in the row's
-// buffer, which starts at lens -2) and the 4 weights. The same for every row of one parity.
+// Where each output column x of a lens row takes its samples: the buffer index of the first of 4 taps (the buffer
+// starts at lens -2) and the 4 weights. The same for every row of one parity.
 struct ColumnTaps {
   std::vector<int> first;
   std::vector<float> weights;  // 4 per column
@@ -48,28 +48,47 @@ ColumnTaps MakeTaps(int width, int shift, int buffer_size) {
   for (int x = 0; x < width; ++x) {
     const double t = x * kHalfSqrt3 - 0.5 * shift;  // in lens pitches from this row's lens 0
     const double lens = std::floor(t);
-    // Buffer index of lens (lens - 1) is lens - 1 + 2.
-    const int first = std::clamp(static_cast<int>(lens) + 1, 0, buffer_size - 4);
-    CubicWeights(static_cast<float>(t - lens), &taps.weights[4 * static_cast<std::size_t>(x)]);
-    // Near the borders the taps were clamped: shift the weights to stay on the same lenses.
-    const int wanted = static_cast<int>(lens) + 1;
-    if (first != wanted) {
-      float w[4] = {0, 0, 0, 0};
-      for (int k = 0; k < 4; ++k) {
-        const int target = std::clamp(wanted + k - first, 0, 3);
-        w[target] += taps.weights[4 * static_cast<std::size_t>(x) + static_cast<std::size_t>(k)];
-      }
-      std::copy(w, w + 4, &taps.weights[4 * static_cast<std::size_t>(x)]);
+    const int wanted = static_cast<int>(lens) + 1;  // buffer index of lens (lens - 1)
+    const int first = std::clamp(wanted, 0, buffer_size - 4);
+    float* w = &taps.weights[4 * static_cast<std::size_t>(x)];
+    CubicWeights(static_cast<float>(t - lens), w);
+    if (first != wanted) {  // clamped at a border: keep each weight on its lens, folded onto the buffer's end
+      float folded[4] = {0, 0, 0, 0};
+      for (int k = 0; k < 4; ++k) folded[std::clamp(wanted + k - first, 0, 3)] += w[k];
+      std::copy(folded, folded + 4, w);
     }
     taps.first[static_cast<std::size_t>(x)] = first;
   }
   return taps;
 }
 
+// sRGB encoding through a table (the curve is smooth; 4096 linear segments are exact to ~1e-5).
+class SrgbTable {
+ public:
+  SrgbTable() {
+    for (int k = 0; k <= kSize; ++k) {
+      const double linear = static_cast<double>(k) / kSize;
+      table_[static_cast<std::size_t>(k)] =
+          static_cast<float>(linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
+    }
+  }
+  float operator()(float linear) const {
+    const float position = std::clamp(linear, 0.0f, 1.0f) * kSize;
+    const int k = std::min(kSize - 1, static_cast<int>(position));
+    const float f = position - static_cast<float>(k);
+    const auto i = static_cast<std::size_t>(k);
+    return table_[i] + f * (table_[i + 1] - table_[i]);
+  }
+
+ private:
+  static constexpr int kSize = 4096;
+  std::array<float, kSize + 1> table_{};
+};
+
 }  // namespace
 
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const LensletGrid& grid,
-                       const DecodedGeometry& geometry, LightField& light_field) {
+                       const DecodedGeometry& geometry, const RayColour& colour, LightField& light_field) {
   const int views = geometry.views;
   const int centre = (views - 1) / 2;
   const int width = geometry.width;
@@ -85,49 +104,94 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
   const std::size_t rgb_stride = rgb.step1();
   const float* white_data = grey_white.ptr<float>(0);
   const std::size_t white_stride = grey_white.step1();
+  std::array<float, 9> m = colour.matrix;
+  for (float& value : m) value *= colour.scale;
+  // Per view: the sensor offset of its rays from a lens centre, and whether they stay inside the lens.
+  const int view_count = views * views;
+  std::vector<double> offset_x(static_cast<std::size_t>(view_count)), offset_y(static_cast<std::size_t>(view_count));
+  std::vector<char> inside_lens(static_cast<std::size_t>(view_count));
+  for (int v = 0; v < views; ++v)
+    for (int u = 0; u < views; ++u) {
+      const auto k = static_cast<std::size_t>(v * views + u);
+      const double along = (u - centre) * geometry.view_step, across = (v - centre) * geometry.view_step;
+      offset_x[k] = c * along - s * across;
+      offset_y[k] = s * along + c * across;
+      inside_lens[k] = std::hypot(along, across) < lens_radius;
+    }
+  const std::size_t lenses = static_cast<std::size_t>(buffer_size);
 #pragma omp parallel
   {
-    std::vector<float> colour(3 * static_cast<std::size_t>(buffer_size));
-    std::vector<float> white(static_cast<std::size_t>(buffer_size));
+    // Every view's sample of every lens of one row: [view][lens][rgb] and [view][lens].
+    std::vector<float> samples(static_cast<std::size_t>(view_count) * lenses * 3);
+    std::vector<float> white(static_cast<std::size_t>(view_count) * lenses);
 #pragma omp for schedule(dynamic, 1)
     for (int y = 0; y < geometry.height; ++y) {
       const int shift = grid.Shift(y);
       const ColumnTaps& row_taps = taps[shift];
-      for (int v = 0; v < views; ++v)
-        for (int u = 0; u < views; ++u) {
-          const ViewIndex view{u, v};
-          const double along = (u - centre) * geometry.view_step, across = (v - centre) * geometry.view_step;
-          const bool inside_lens = std::hypot(along, across) < lens_radius;
-          // This view's sample of every lens of the row (one bilinear look-up each).
-          double px = 0.0, py = 0.0;
-          grid.SensorPosition(lens_begin + 0.5 * shift, y, along, across, px, py);
-          for (int k = 0; k < buffer_size; ++k) {
-            Bilinear<3>(rgb_data, rgb_stride, rgb.cols, rgb.rows, px, py, &colour[3 * static_cast<std::size_t>(k)]);
-            Bilinear<1>(white_data, white_stride, grey_white.cols, grey_white.rows, px, py,
-                        &white[static_cast<std::size_t>(k)]);
-            px += pitch_x;
-            py += pitch_y;
-          }
-          // Hexagonal to rectangular: cubic interpolation along the lens row.
-          float* out = light_field.ViewData(view) + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 3;
-          float* weight_out =
-              light_field.weights().ViewData(view) + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-          for (int x = 0; x < width; ++x) {
-            const int first = row_taps.first[static_cast<std::size_t>(x)];
-            const float* w = &row_taps.weights[4 * static_cast<std::size_t>(x)];
-            const float* p = &colour[3 * static_cast<std::size_t>(first)];
-            for (int ch = 0; ch < 3; ++ch)
-              out[3 * x + ch] = w[0] * p[ch] + w[1] * p[3 + ch] + w[2] * p[6 + ch] + w[3] * p[9 + ch];
-            const float* q = &white[static_cast<std::size_t>(first)];
-            weight_out[x] = inside_lens ? w[0] * q[0] + w[1] * q[1] + w[2] * q[2] + w[3] * q[3] : 0.0f;
-          }
+      // Lens by lens, all views: the look-ups of one lens stay within its micro-image (cache-resident).
+      double cx = 0.0, cy = 0.0;
+      grid.SensorPosition(lens_begin + 0.5 * shift, y, 0.0, 0.0, cx, cy);
+      for (std::size_t lens = 0; lens < lenses; ++lens, cx += pitch_x, cy += pitch_y) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(view_count); ++k) {
+          if (!inside_lens[k]) continue;
+          float in[3];
+          const double px = cx + offset_x[k], py = cy + offset_y[k];
+          Bilinear<3>(rgb_data, rgb_stride, rgb.cols, rgb.rows, px, py, in);
+          float* out = &samples[(k * lenses + lens) * 3];
+          out[0] = m[0] * in[0] + m[1] * in[1] + m[2] * in[2];
+          out[1] = m[3] * in[0] + m[4] * in[1] + m[5] * in[2];
+          out[2] = m[6] * in[0] + m[7] * in[1] + m[8] * in[2];
+          Bilinear<1>(white_data, white_stride, grey_white.cols, grey_white.rows, px, py, &white[k * lenses + lens]);
         }
+      }
+      // Hexagonal to rectangular, view by view: cubic interpolation along the lens row.
+      for (int k = 0; k < view_count; ++k) {
+        const ViewIndex view = ViewFromCameraNumber(k, views);
+        const float* view_samples = &samples[static_cast<std::size_t>(k) * lenses * 3];
+        const float* view_white = &white[static_cast<std::size_t>(k) * lenses];
+        const bool lit = inside_lens[static_cast<std::size_t>(k)] != 0;
+        float* out = light_field.ViewData(view) + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 3;
+        float* weight_out =
+            light_field.weights().ViewData(view) + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        if (!lit) {  // as LFToolbox: rays beyond the lens radius are black, with no weight
+          std::fill(out, out + 3 * static_cast<std::size_t>(width), 0.0f);
+          std::fill(weight_out, weight_out + width, 0.0f);
+          continue;
+        }
+        for (int x = 0; x < width; ++x) {
+          const auto first = static_cast<std::size_t>(row_taps.first[static_cast<std::size_t>(x)]);
+          const float* w = &row_taps.weights[4 * static_cast<std::size_t>(x)];
+          const float* p = view_samples + 3 * first;
+          for (int ch = 0; ch < 3; ++ch)
+            out[3 * x + ch] =
+                std::clamp(w[0] * p[ch] + w[1] * p[3 + ch] + w[2] * p[6 + ch] + w[3] * p[9 + ch], 0.0f, 1.0f);
+          const float* q = view_white + first;
+          weight_out[x] = std::clamp(w[0] * q[0] + w[1] * q[1] + w[2] * q[2] + w[3] * q[3], 0.0f, 1.0f);
+        }
+      }
     }
   }
 }
 
-void SoftenRowAlternation(LightField& light_field, float alpha) {
-  if (alpha <= 0.0f) return;
+float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& m) {
+  float brightest = 0.0f;
+#pragma omp parallel for schedule(static) reduction(max : brightest)
+  for (int y = 0; y < rgb.rows; ++y) {
+    const float* p = rgb.ptr<float>(y);
+    const float* w = grey_white.ptr<float>(y);
+    for (int x = 0; x < rgb.cols; ++x) {
+      if (w[x] < 0.5f) continue;
+      const float* in = p + 3 * x;
+      brightest = std::max({brightest, m[0] * in[0] + m[1] * in[1] + m[2] * in[2],
+                            m[3] * in[0] + m[4] * in[1] + m[5] * in[2], m[6] * in[0] + m[7] * in[1] + m[8] * in[2]});
+    }
+  }
+  return brightest;
+}
+
+void SoftenAndEncode(LightField& light_field, float alpha, bool srgb) {
+  if (alpha <= 0.0f && !srgb) return;
+  static const SrgbTable encode;
   const LightFieldShape& shape = light_field.shape();
   const std::size_t row_size = static_cast<std::size_t>(shape.width) * static_cast<std::size_t>(shape.channels);
   const int views = static_cast<int>(shape.Views());
@@ -138,13 +202,24 @@ void SoftenRowAlternation(LightField& light_field, float alpha) {
     for (int k = 0; k < views; ++k) {
       float* view = light_field.ViewData(ViewFromCameraNumber(k, shape.nu));
       std::copy(view, view + row_size, previous.begin());
-      for (int y = 1; y + 1 < shape.height; ++y) {
+      for (int y = 0; y < shape.height; ++y) {
         float* row = view + static_cast<std::size_t>(y) * row_size;
-        const float* next = row + row_size;
-        std::copy(row, row + row_size, current.begin());
-        for (std::size_t i = 0; i < row_size; ++i)
-          row[i] = (1.0f - 2.0f * alpha) * current[i] + alpha * (previous[i] + next[i]);
-        std::swap(previous, current);
+        if (alpha > 0.0f && y > 0 && y + 1 < shape.height) {
+          const float* next = row + row_size;
+          std::copy(row, row + row_size, current.begin());
+          for (std::size_t i = 0; i < row_size; ++i)
+            row[i] = (1.0f - 2.0f * alpha) * current[i] + alpha * (previous[i] + next[i]);
+          std::swap(previous, current);
+        }
+        // Row y - 1 is final once row y has been softened (it needed y - 1's original only): encode it now.
+        if (srgb && y > 0) {
+          float* done = row - row_size;
+          for (std::size_t i = 0; i < row_size; ++i) done[i] = encode(done[i]);
+        }
+      }
+      if (srgb) {
+        float* last = view + static_cast<std::size_t>(shape.height - 1) * row_size;
+        for (std::size_t i = 0; i < row_size; ++i) last[i] = encode(last[i]);
       }
     }
   }

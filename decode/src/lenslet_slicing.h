@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <opencv2/core/mat.hpp>
 
 #include "lfsp/core/light_field.h"
@@ -8,18 +9,30 @@
 
 namespace lfsp::decode {
 
+// What happens to each ray's colour on its way into the light field: out = clamp(scale * M * rgb, 0, 1), linear.
+struct RayColour {
+  std::array<float, 9> matrix = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major, out = M * in
+  float scale = 1.0f;
+};
+
 // Fills `light_field` (geometry.views^2 views of geometry.width x geometry.height, RGB, with weights) in one
-// interpolation pass: for output sample (u, v, x, y) the two micro-lenses of lens row y that bracket lattice position
-// x * sqrt(3)/2 are looked up at the view's offset ((u - uc), (v - vc)) * view_step from their centres (bilinear in
-// the sensor image), and blended linearly along the row. Weights come the same way from `grey_white`.
-// `rgb` is CV_32FC3 (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows,
-// which keeps each thread's reads within a band of sensor rows.
+// interpolation pass: for every lens row y and view (u, v), each micro-lens of the row is looked up once at the
+// view's offset ((u - uc), (v - vc)) * view_step from its centre (bilinear in the sensor image), then the output
+// row is interpolated along the lens row (cubic, Catmull-Rom) at lattice positions x * sqrt(3)/2: hexagonal to
+// rectangular. Weights come the same way from `grey_white`, zero beyond the micro-lens radius. `rgb` is CV_32FC3
+// (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows, which keeps each
+// thread's reads within a band of sensor rows.
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const LensletGrid& grid,
-                       const DecodedGeometry& geometry, LightField& light_field);
+                       const DecodedGeometry& geometry, const RayColour& colour, LightField& light_field);
+
+// The largest channel of M * rgb over the well-lit sensor pixels (grey white >= 0.5): the brightest ray the light
+// field will hold, so a scale that keeps every highlight unclipped can be chosen before slicing.
+float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& matrix);
 
 // Softens what hexagonal sampling leaves behind: along vertical edges, shifted and unshifted lens rows place the edge
 // half a pitch apart, so the decoded view alternates row by row. Each row is mixed with its two neighbours,
-// [alpha, 1 - 2 alpha, alpha] (the response at the row-alternation frequency is 1 - 4 alpha). Parallel over views.
-void SoftenRowAlternation(LightField& light_field, float alpha);
+// [alpha, 1 - 2 alpha, alpha] (the response at the row-alternation frequency is 1 - 4 alpha). In the same pass, the
+// linear values are sRGB-encoded if `srgb`. Parallel over views.
+void SoftenAndEncode(LightField& light_field, float alpha, bool srgb);
 
 }  // namespace lfsp::decode

@@ -51,9 +51,22 @@ struct DecodeReport {
   std::string colour;
   long hot_pixels_corrected = 0;
   double output_scale = 1.0;              // the factor that brought the brightest decoded sample to <= 1 (no clipping)
-  std::map<std::string, double> seconds;  // per step
+  std::map<std::string, double> seconds;  // wall time per step
+  std::map<std::string, double> cpu_seconds;  // CPU time per step, all threads
   nlohmann::json ToJson() const;
 };
+
+// A white image made ready for devignetting (once per white image, like its grid model): the reciprocal of the
+// normalised white (devignetting becomes a product) and its grey version (weights, grid fitting).
+struct PreparedWhite {
+  cv::Mat inverse;  // CV_32FC1, 1 / max(min_white, white / its 99.9th percentile), per Bayer pixel
+  cv::Mat grey;     // CV_32FC1, WhiteImageToGrey
+  RawFormat format;
+  ColourMode colour = ColourMode::kCamera;  // which white balance `inverse` was made for
+  std::string source;
+};
+PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
+                           double min_white = DecodeOptions{}.min_white);
 
 // Decodes a raw lenslet capture into a light field (views x views of width x height, RGB, per-ray weights from the
 // white image): levels from both metadata, hot-pixel correction, devignetting by the white image, demosaicking,
@@ -64,5 +77,9 @@ struct DecodeReport {
 LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const RawImage& white,
                          const LytroMetadata& white_metadata, const LensletGrid& grid,
                          const DecodeOptions& options = {}, DecodeReport* report = nullptr);
+// The same with a prepared white image (its colour mode must match options.colour; options.min_white is the one it
+// was prepared with).
+LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
+                         const LensletGrid& grid, const DecodeOptions& options = {}, DecodeReport* report = nullptr);
 
 }  // namespace lfsp::decode
