@@ -174,10 +174,13 @@ void AddRecolorCommand(CLI::App& app) {
                       "HDF5 file with per-ray labels, dataset 'labels' (nv x nu x H x W int32, as `lfsp segment` "
                       "writes it) or 'GT_LABELS' (default: the input bundle's own labels)");
   command->add_option("--label-ids", options->label_ids, "Select these label ids, comma-separated, e.g. 3,17")
-      ->delimiter(',');
-  command->add_option("--at", options->at,
-                      "Select the label under this centre-view pixel x,y (column,row); repeat for several, e.g. "
-                      "--at 120,88 --at 40,200");
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one value per occurrence: never swallow the positional light field
+  command
+      ->add_option("--at", options->at,
+                   "Select the label under this centre-view pixel x,y (column,row); repeat for several, e.g. "
+                   "--at 120,88 --at 40,200")
+      ->allow_extra_args(false);  // one value per occurrence: never swallow the positional light field
   command->add_option("--mask", options->mask,
                       "Select the labels with more than half of their centre-view area inside this mask image "
                       "(centre-view size; white = inside)");

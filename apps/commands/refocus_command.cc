@@ -200,7 +200,8 @@ void AddRefocusCommand(CLI::App& app) {
   command
       ->add_option("--disparities", options->disparities,
                    "Refocus at these disparities, pixels per view step, comma-separated, e.g. -1,0,1.5 (default: none)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one value per occurrence: never swallow the positional light field
   command->add_option("--stack", options->stack,
                       "Refocus at N disparities evenly spaced over --range, else the input's recorded disparity "
                       "range, else its disparity map's range (default: 0, no stack)");
