@@ -1,0 +1,75 @@
+// Depth (issue 5): the full occlusion-aware method on HCI antinous 9x9x512x512 (target: <= 10 s wall on 2 cores,
+// <= 4 GB peak, BadPix 0.07 <= 18 %, MSE x100 <= 9), with the plain winner-take-all cost volume as the baseline of
+// the same run, and the full method without occlusion handling for the near-discontinuity comparison.
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "bench_case.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/views_folder.h"
+#include "lfsp/depth/depth_estimator.h"
+#include "lfsp/depth/metrics.h"
+
+namespace lfsp::bench {
+namespace {
+
+std::filesystem::path Antinous() { return std::filesystem::path(SharedDataDir()) / "hci" / "antinous"; }
+
+// The light field and ground truth stay loaded across the timed runs of a case (each case has its own process).
+struct Scene {
+  LightField light_field;
+  DisparityMap gt;
+};
+
+Scene& Loaded() {
+  static Scene scene;
+  return scene;
+}
+
+void Load() {
+  Loaded().light_field = ReadViewsFolder(Antinous());
+  Loaded().gt = ReadPfm(Antinous() / "gt_disp_lowres.pfm");
+}
+
+std::string Quality(const depth::DepthResult& result) {
+  const depth::DepthEvaluation e = depth::EvaluateDisparity(result.disparity, Loaded().gt);
+  char text[160];
+  std::snprintf(text, sizeof text, "BadPix0.07 %.2f %%, MSEx100 %.2f; near disc. BadPix0.07 %.1f %%, MSEx100 %.1f",
+                e.all.badpix_007, e.all.mse_x100, e.near_discontinuities.badpix_007, e.near_discontinuities.mse_x100);
+  return text;
+}
+
+BenchCase AntinousCase(const char* name, const char* target, bool occlusion, bool regularise) {
+  BenchCase c;
+  c.stage = "depth";
+  c.name = name;
+  c.input = "antinous 9x9x512x512, 80 labels";
+  c.target = target;
+  c.needs_shared_data = true;
+  c.repetitions = 3;
+  c.prepare = Load;
+  c.run = [occlusion, regularise] {
+    depth::DepthOptions options;
+    options.occlusion_handling = occlusion;
+    options.regularise = regularise;
+    return Quality(depth::EstimateDepth(Loaded().light_field, options));
+  };
+  return c;
+}
+
+}  // namespace
+
+// The baseline first: a case's ratio needs its baseline's median from earlier in the same run.
+LFSP_BENCH_CASE { return AntinousCase("antinous-wta", "baseline (cost volume + winner-take-all)", true, false); }
+
+LFSP_BENCH_CASE {
+  BenchCase c = AntinousCase("antinous-full", "<= 10 s, <= 4 GB; BadPix0.07 <= 18 %, MSEx100 <= 9", true, true);
+  c.baseline = "antinous-wta";
+  return c;
+}
+
+LFSP_BENCH_CASE { return AntinousCase("antinous-no-occlusion", "near-disc. BadPix0.07 above full's", false, true); }
+
+}  // namespace lfsp::bench
