@@ -84,6 +84,13 @@ ordered_json MetadataJson(const LytroMetadata& md) {
   if (md.colour.white_balance_gain) colour["white_balance_gain"] = BayerJson(*md.colour.white_balance_gain);
   PutOptional(colour, "gamma", md.colour.gamma);
   if (md.colour.normalized_response) colour["normalized_response"] = BayerJson(*md.colour.normalized_response);
+  if (md.colour.awb_gain) colour["awb_gain"] = BayerJson(*md.colour.awb_gain);
+  PutOptional(colour, "awb_cct", md.colour.awb_cct);
+  if (!md.colour.per_ccm.empty()) {
+    ordered_json per = ordered_json::array();
+    for (const auto& entry : md.colour.per_ccm) per.push_back({{"cct", entry.cct}, {"ccm", entry.ccm}});
+    colour["per_ccm"] = per;
+  }
   out["colour"] = colour;
   out["modulation_frame"] = md.modulation_frame;
   return out;

@@ -1,5 +1,6 @@
 #include "lfsp/decode/lytro_metadata.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -113,18 +114,36 @@ MlaDescription ReadMla(const nlohmann::json& m, const std::string& source) {
   return mla;
 }
 
+std::array<double, 9> ReadCcm(const nlohmann::json& ccm, const std::string& source, const std::string& path) {
+  if (!ccm.is_array() || ccm.size() != 9) throw Error(source + ": " + path + " is not an array of 9 numbers");
+  std::array<double, 9> values{};
+  for (std::size_t i = 0; i < 9; ++i) {
+    if (!ccm[i].is_number()) throw Error(source + ": " + path + " is not an array of 9 numbers");
+    values[i] = ccm[i].get<double>();
+  }
+  return values;
+}
+
 ColourDescription ReadColour(const nlohmann::json& m, const std::string& source) {
   ColourDescription c;
-  const nlohmann::json* ccm = FindPath(m, "image.color.ccmRgbToSrgbArray");
-  if (ccm == nullptr) ccm = FindPath(m, "image.color.ccm");
-  if (ccm != nullptr) {
-    if (!ccm->is_array() || ccm->size() != 9) throw Error(source + ": image.color ccm is not an array of 9 numbers");
-    std::array<double, 9> values{};
-    for (std::size_t i = 0; i < 9; ++i) {
-      if (!(*ccm)[i].is_number()) throw Error(source + ": image.color ccm is not an array of 9 numbers");
-      values[i] = (*ccm)[i].get<double>();
+  if (const nlohmann::json* ccm = FindPath(m, "image.color.ccmRgbToSrgbArray"); ccm != nullptr) {
+    c.ccm = ReadCcm(*ccm, source, "image.color.ccmRgbToSrgbArray");
+  } else if (const nlohmann::json* illum_ccm = FindPath(m, "image.color.ccm"); illum_ccm != nullptr) {
+    c.ccm = ReadCcm(*illum_ccm, source, "image.color.ccm");
+  }
+  if (FindPath(m, "algorithms.awb.computed.gain") != nullptr) {
+    c.awb_gain = ReadBayerValues(m, "algorithms.awb.computed.gain", source, "");
+    c.awb_cct = NumberAt(m, "algorithms.awb.computed.cct", source);
+  }
+  if (const nlohmann::json* per = FindPath(m, "devices.sensor.perCcm"); per != nullptr && per->is_array()) {
+    for (std::size_t i = 0; i < per->size(); ++i) {
+      const std::string path = "devices.sensor.perCcm[" + std::to_string(i) + "]";
+      ColourDescription::CcmAtTemperature entry;
+      entry.cct = RequireNumber(m, path + ".cct", source);
+      entry.ccm = ReadCcm((*per)[i].contains("ccm") ? (*per)[i]["ccm"] : nlohmann::json(), source, path + ".ccm");
+      c.per_ccm.push_back(entry);
     }
-    c.ccm = values;
+    std::sort(c.per_ccm.begin(), c.per_ccm.end(), [](const auto& a, const auto& b) { return a.cct < b.cct; });
   }
   if (FindPath(m, "image.color.whiteBalanceGain") != nullptr) {
     c.white_balance_gain = ReadBayerValues(m, "image.color.whiteBalanceGain", source, "");

@@ -125,6 +125,14 @@ TEST(LytroMetadataReal, IllumContainerInlineMetadataUsesImageNotRawDetails) {
   EXPECT_NEAR(md.colour.white_balance_gain->r, 1.0875036716461182, kExact);
   EXPECT_NEAR(md.RequireMla().scale_y, 1.0003466606140137, kExact);
   EXPECT_NEAR(md.RequireMla().offset_y, 6.261034965515137e-06, kExact);
+  ASSERT_TRUE(md.colour.awb_gain.has_value());
+  EXPECT_NEAR(md.colour.awb_gain->b, 1.6269161701202393, kExact);
+  EXPECT_NEAR(*md.colour.awb_cct, 3505, kExact);
+  ASSERT_EQ(md.colour.per_ccm.size(), 3u);
+  EXPECT_NEAR(md.colour.per_ccm[0].cct, 2850, kExact);
+  EXPECT_NEAR(md.colour.per_ccm[2].cct, 6500, kExact);
+  EXPECT_NEAR(md.colour.per_ccm[1].ccm[0], 2.4793264865875244, kExact);
+  EXPECT_NEAR(md.colour.per_ccm[2].ccm[8], 1.8904708623886108, kExact);
 }
 
 TEST(LytroMetadata, MosaicFromTileAndUpperLeftPixel) {

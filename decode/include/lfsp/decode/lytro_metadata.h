@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lfsp/decode/raw_packing.h"
 
@@ -65,6 +66,15 @@ struct ColourDescription {
   std::optional<double> gamma;
   std::optional<BayerValues> normalized_response;  // devices.sensor.normalizedResponses[0]
   std::optional<double> normalized_response_cct;
+  // Illum: the camera's auto white balance (algorithms.awb.computed.{gain, cct}) and its colour matrices per
+  // colour temperature (devices.sensor.perCcm[] {cct, ccm}), sorted by cct.
+  std::optional<BayerValues> awb_gain;
+  std::optional<double> awb_cct;
+  struct CcmAtTemperature {
+    double cct = 0.0;
+    std::array<double, 9> ccm{};
+  };
+  std::vector<CcmAtTemperature> per_ccm;
 };
 
 // The metadata of one frame (a capture or a white image), independent of the
