@@ -52,7 +52,9 @@ json IllumMla(const CameraModel& camera) {
   return mla;
 }
 
-// Exposure as the camera would report it: the capture's exposure scales a base shutter time.
+// Exposure as the camera would report it: shutter time proportional to the exposure factor (the camera's real
+// shutter time at the default factor 0.7), for captures and white images alike. So scene-linear radiance is
+// (capture - black) / (white image - black) * (white duration / capture duration), exactly.
 double ExposureDuration(const CameraModel& camera, const RawCapture& raw) {
   return camera.exposure_duration * raw.exposure / 0.7;
 }
@@ -245,7 +247,7 @@ json PrivateMetadata(const CameraModel& camera) {
 
 json WhiteImageMetadata(const CameraModel& camera, const RawCapture& white) {
   const bool f01 = camera.model == "F01";
-  const double duration = camera.exposure_duration * 0.5;
+  const double duration = ExposureDuration(camera, white);
   const json mosaic = Mosaic(camera);
   json metadata = {
       {"camera", {{"make", "Lytro, Inc."}, {"model", camera.white_model}, {"firmware", camera.firmware}}},
@@ -412,6 +414,10 @@ json LensletGeometryJson(const CameraModel& camera, const RawCapture& raw) {
       {"bits", camera.bits},
       {"response", {{"r", camera.response_r}, {"g", 1.0}, {"b", camera.response_b}}},
       {"exposure", raw.exposure},
+      {"radiance",
+       "scene-linear RGB = (capture - black) / (matching white image - black) * (white frameExposureDuration / "
+       "capture frameExposureDuration), per Bayer pixel (responses and vignetting cancel); the decoded ground truth "
+       "holds exactly this (before demosaicking), up to noise"},
       {"lens_setting",
        {{"zoomStep", raw.setting.zoom_step},
         {"focusStep", raw.setting.focus_step},
