@@ -316,8 +316,17 @@ bool LooksLikeLytroFile(const std::filesystem::path& path) {
   return false;
 }
 
+namespace {
+ordered_json DescribeCapture(const LytroCapture& capture, const std::filesystem::path& path);
+}  // namespace
+
 nlohmann::ordered_json DescribeLytroFile(const std::filesystem::path& path) {
-  const LytroCapture capture = OpenLytroCapture(path);
+  return DescribeCapture(OpenLytroCapture(path), path);
+}
+
+namespace {
+
+ordered_json DescribeCapture(const LytroCapture& capture, const std::filesystem::path& path) {
   ordered_json out;
   out["file"] = path.string();
   out["format"] = capture.format;
@@ -365,6 +374,8 @@ nlohmann::ordered_json DescribeLytroFile(const std::filesystem::path& path) {
   out["missing_references"] = missing;
   return out;
 }
+
+}  // namespace
 
 std::string FormatLytroDescription(const nlohmann::ordered_json& d) {
   std::ostringstream out;
@@ -434,8 +445,8 @@ std::string FormatLytroDescription(const nlohmann::ordered_json& d) {
 std::vector<std::filesystem::path> ExtractLytroFile(const std::filesystem::path& path,
                                                     const std::filesystem::path& out_dir) {
   const LytroCapture capture = OpenLytroCapture(path);
-  const ordered_json description = DescribeLytroFile(path);
-  std::vector<PlannedFile> plan = PlanExtraction(capture);  // throws before anything is written
+  const ordered_json description = DescribeCapture(capture, path);  // one read, one SHA-1 pass
+  std::vector<PlannedFile> plan = PlanExtraction(capture);          // throws before anything is written
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec || !std::filesystem::is_directory(out_dir)) {
