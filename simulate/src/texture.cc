@@ -73,8 +73,8 @@ Rgb Texture::Evaluate(float p, float q) const {
     case Kind::kConstant:
       return colour_a;
     case Kind::kChecker: {
-      const float c = std::cos(angle);
-      const float s = std::sin(angle);
+      const float c = angle == 0.0f ? 1.0f : std::cos(angle);  // the common unrotated case skips the trigonometry
+      const float s = angle == 0.0f ? 0.0f : std::sin(angle);
       const float a = (c * p + s * q) / period;
       const float b = (-s * p + c * q) / period;
       const auto parity = (static_cast<long>(std::floor(a)) + static_cast<long>(std::floor(b))) & 1L;
