@@ -11,24 +11,29 @@
 namespace lfsp::edit {
 namespace {
 
-// Membership test for label ids: a table indexed by label up to the largest selected id.
+// Membership test for label ids: a table indexed by label up to the largest selected id, or, for huge ids (labels
+// need not be dense), a binary search in the sorted ids.
 class SelectionTable {
  public:
-  explicit SelectionTable(const std::vector<std::int32_t>& selection) {
-    std::int32_t largest = -1;
-    for (const std::int32_t id : selection) {
-      if (id < 0) throw Error("recolour: selected label ids must be >= 0, got " + std::to_string(id));
-      largest = std::max(largest, id);
+  explicit SelectionTable(const std::vector<std::int32_t>& selection) : sorted_(selection) {
+    std::sort(sorted_.begin(), sorted_.end());
+    if (!sorted_.empty() && sorted_.front() < 0)
+      throw Error("recolour: selected label ids must be >= 0, got " + std::to_string(sorted_.front()));
+    if (!sorted_.empty() && sorted_.back() < kMaxTableSize) {
+      selected_.assign(static_cast<std::size_t>(sorted_.back()) + 1, 0);
+      for (const std::int32_t id : sorted_) selected_[static_cast<std::size_t>(id)] = 1;
     }
-    selected_.assign(static_cast<std::size_t>(largest) + 1, 0);
-    for (const std::int32_t id : selection) selected_[static_cast<std::size_t>(id)] = 1;
   }
   bool Contains(std::int32_t label) const {
-    return label >= 0 && static_cast<std::size_t>(label) < selected_.size() &&
-           selected_[static_cast<std::size_t>(label)] != 0;
+    if (label < 0) return false;
+    if (!selected_.empty() || sorted_.empty())
+      return static_cast<std::size_t>(label) < selected_.size() && selected_[static_cast<std::size_t>(label)] != 0;
+    return std::binary_search(sorted_.begin(), sorted_.end(), label);
   }
 
  private:
+  static constexpr std::int32_t kMaxTableSize = 1 << 24;
+  std::vector<std::int32_t> sorted_;
   std::vector<unsigned char> selected_;
 };
 

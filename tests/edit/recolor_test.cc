@@ -161,6 +161,15 @@ TEST(RecolorTest, FeatherStrengthFollowsDistanceAndWeights) {
   EXPECT_NEAR(weighted.at<float>(4, 10), 0.375f, 1e-5f);
 }
 
+// Label ids need not be dense: a huge id is selected without a table of that size.
+TEST(RecolorTest, HugeLabelIdsAreSelected) {
+  cv::Mat labels(4, 4, CV_32SC1, cv::Scalar(5));
+  labels.at<std::int32_t>(1, 2) = 2000000000;
+  const cv::Mat strength = EditStrength(labels, {2000000000, 7}, 0.0f);
+  EXPECT_FLOAT_EQ(strength.at<float>(1, 2), 1.0f);
+  EXPECT_EQ(cv::countNonZero(strength), 1);
+}
+
 TEST(RecolorTest, FeatheredEditLeavesRaysBeyondTheBandBitIdentical) {
   const simulate::RenderedLightField scene = RenderPlanesScene();
   const std::vector<std::int32_t> selection{kStripesLabel};
