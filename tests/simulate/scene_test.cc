@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <opencv2/imgcodecs.hpp>
 
 #include "lfsp/core/error.h"
 #include "lfsp/simulate/render.h"
@@ -72,6 +73,31 @@ TEST(Scene, LoadsFromFileAndRejectsBadInput) {
                    R"({"objects": [{"type": "ellipsoid", "radius": -1, "texture": {"type": "constant"}}]})")),
                Error);
   EXPECT_THROW(SceneFromSpec("no-such-scene"), Error);
+}
+
+// A PNG image texture is mapped onto [0,1]^2 of the shorter image side: a 4x4 colour grid shows up in the render.
+TEST(Scene, PngImageTexture) {
+  testing::TempDir dir;
+  cv::Mat bgr(4, 4, CV_8UC3);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uchar>(60 * y), 0, static_cast<uchar>(60 * x));
+  ASSERT_TRUE(cv::imwrite((dir / "grid.png").string(), bgr));
+  const auto json =
+      nlohmann::json::parse(R"({"objects": [{"disparity": 0.5, "texture": {"type": "image", "path": "grid.png"}}]})");
+  const Scene scene = SceneFromJson(json, dir.path().string());
+  RenderOptions options;
+  options.nu = options.nv = 3;
+  options.width = options.height = 64;
+  const auto r = RenderLightField(scene, options);
+  // Centre of image cell (x=2, y=1): red = 120/255, blue = 60/255 (BGR on disk, RGB in memory).
+  const int px = 40, py = 24;
+  EXPECT_NEAR(r.light_field.at({1, 1}, py, px, 0), 120.0f / 255.0f, 0.02f);
+  EXPECT_NEAR(r.light_field.at({1, 1}, py, px, 2), 60.0f / 255.0f, 0.02f);
+  EXPECT_THROW(
+      SceneFromJson(nlohmann::json::parse(R"({"objects": [{"texture": {"type": "image", "path": "missing.png"}}]})"),
+                    dir.path().string()),
+      Error);
 }
 
 }  // namespace
