@@ -173,17 +173,19 @@ void AddRecolorCommand(CLI::App& app) {
   command->add_option("--labels", options->labels,
                       "HDF5 file with per-ray labels, dataset 'labels' (nv x nu x H x W int32, as `lfsp segment` "
                       "writes it) or 'GT_LABELS' (default: the input bundle's own labels)");
-  command->add_option("--label-ids", options->label_ids, "Select these label ids, comma-separated, e.g. 3,17")
+  command
+      ->add_option("--label-ids", options->label_ids,
+                   "Select these label ids, comma-separated, e.g. 3,17 (give exactly one of --label-ids, --at, --mask)")
       ->delimiter(',')
       ->allow_extra_args(false);  // one value per occurrence: never swallow the positional light field
   command
       ->add_option("--at", options->at,
                    "Select the label under this centre-view pixel x,y (column,row); repeat for several, e.g. "
-                   "--at 120,88 --at 40,200")
+                   "--at 120,88 --at 40,200 (default: none)")
       ->allow_extra_args(false);  // one value per occurrence: never swallow the positional light field
   command->add_option("--mask", options->mask,
                       "Select the labels with more than half of their centre-view area inside this mask image "
-                      "(centre-view size; white = inside)");
+                      "(centre-view size; white = inside) (default: none)");
   command->add_option("--hue", options->hue, "Rotate the hue by this many degrees (default: 0)");
   command->add_option("--saturation", options->saturation, "Multiply saturation (chroma in lch) by this (default: 1)");
   command->add_option("--value", options->value, "Multiply value (lightness L* in lch) by this (default: 1)");
@@ -195,11 +197,11 @@ void AddRecolorCommand(CLI::App& app) {
   command->add_flag("--no-weights", options->no_weights,
                     "Do not scale the feather band by the input's ray weights (default: scale when present)");
   command->add_option("--bit-depth", options->bit_depth,
-                      "Bits per sample for PNG outputs (views folder, ESLF, previews use 8): 8 or 16 (default: 8)");
+                      "Bits per sample of a views-folder or ESLF output (previews are 8-bit): 8 or 16 (default: 8)");
   command
       ->add_option(
           "--out", options->out,
-          "Output light field: .h5 bundle (float, exact), .png ESLF or a views folder; previews "
+          "Output light field: .h5 bundle (float, exact), .png ESLF or a views folder; "
           "the previews OUT-stem.before.png and OUT-stem.after.png go beside it, the summary to OUT.summary.json "
           "(OUT/summary.json for a folder)")
       ->required();
