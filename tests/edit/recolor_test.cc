@@ -9,10 +9,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/edit/colour_adjust.h"
+#include "lfsp/edit/labels_file.h"
 #include "lfsp/edit/selection.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
+#include "test_support.h"
 
 namespace lfsp::edit {
 namespace {
@@ -222,6 +225,36 @@ TEST(SelectionTest, PointsAndIdsAreChecked) {
   EXPECT_EQ(SelectLabelIds(labels, {9, 5, 9}), (std::vector<std::int32_t>{5, 9}));
   EXPECT_THROW(SelectLabelIds(labels, {4}), Error);  // occurs nowhere
   EXPECT_THROW(SelectLabelIds(labels, {-1}), Error);
+}
+
+// Labels are read alone from a bundle's `labels` dataset; files without one, or not HDF5, are named in the error.
+TEST(LabelsFileTest, ReadsTheLabelsDatasetAndRejectsOthers) {
+  lfsp::testing::TempDir dir;
+  LightFieldShape shape{3, 2, 6, 5, 3};
+  Bundle bundle;
+  bundle.light_field = LightField(shape);
+  WriteBundle(bundle, dir / "no_labels.h5");
+  bundle.labels = Labels(shape, 4);
+  bundle.labels->at({2, 1}, 4, 5) = 11;
+  WriteBundle(bundle, dir / "labels.h5");
+
+  const Labels labels = ReadLabelsFile(dir / "labels.h5");
+  EXPECT_EQ(labels.shape().nu, 3);
+  EXPECT_EQ(labels.shape().nv, 2);
+  EXPECT_EQ(labels.at({2, 1}, 4, 5), 11);
+  EXPECT_EQ(labels.at({0, 0}, 0, 0), 4);
+  EXPECT_NO_THROW(CheckLabelsMatch(labels, shape, "test"));
+  EXPECT_THROW(CheckLabelsMatch(labels, LightFieldShape{2, 3, 6, 5, 3}, "test"), Error);
+
+  try {
+    ReadLabelsFile(dir / "no_labels.h5");
+    FAIL() << "expected an error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("no_labels.h5"), std::string::npos) << error.what();
+  }
+  lfsp::testing::WriteBytes(dir / "text.h5", "not hdf5");
+  EXPECT_THROW(ReadLabelsFile(dir / "text.h5"), Error);
+  EXPECT_THROW(ReadLabelsFile(dir / "missing.h5"), Error);
 }
 
 TEST(ColourAdjustTest, HsvHueRotationTurnsRedIntoGreen) {
