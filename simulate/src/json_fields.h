@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -10,24 +11,38 @@
 namespace lfsp::simulate {
 
 inline std::string RequireString(const nlohmann::json& json, const char* key, const std::string& where) {
+  if (!json.is_object()) throw Error(where + ": expected an object");
   if (!json.contains(key) || !json.at(key).is_string()) throw Error(where + "." + key + ": expected a string");
   return json.at(key).get<std::string>();
 }
 
+// Every number in a scene is a coordinate, size, disparity or angle: anything beyond +-1e4 (or not finite) is a
+// mistake, and rejecting it keeps the renderer's arithmetic finite.
+constexpr double kMaxSceneNumber = 1e4;
+
+inline float CheckedNumber(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw Error(where + ": expected a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v) || std::abs(v) > kMaxSceneNumber)
+    throw Error(where + ": number out of range (|value| must be <= 1e4)");
+  return static_cast<float>(v);
+}
+
 inline float ReadFloat(const nlohmann::json& json, const char* key, float fallback, const std::string& where) {
+  if (!json.is_object()) throw Error(where + ": expected an object");
   if (!json.contains(key)) return fallback;
-  if (!json.at(key).is_number()) throw Error(where + "." + key + ": expected a number");
-  return json.at(key).get<float>();
+  return CheckedNumber(json.at(key), where + "." + key);
 }
 
 inline std::array<float, 2> ReadPoint(const nlohmann::json& json, const std::string& where) {
   if (!json.is_array() || json.size() != 2 || !json[0].is_number() || !json[1].is_number())
     throw Error(where + ": expected [x, y]");
-  return {json[0].get<float>(), json[1].get<float>()};
+  return {CheckedNumber(json[0], where + "[0]"), CheckedNumber(json[1], where + "[1]")};
 }
 
 inline std::array<float, 2> ReadPoint(const nlohmann::json& json, const char* key, std::array<float, 2> fallback,
                                       const std::string& where) {
+  if (!json.is_object()) throw Error(where + ": expected an object");
   if (!json.contains(key)) return fallback;
   return ReadPoint(json.at(key), where + "." + key);
 }

@@ -123,8 +123,9 @@ SceneObject ObjectFromJson(const nlohmann::json& json, int index, const std::str
   SceneObject object;
   object.name = json.value("name", "object" + std::to_string(index));
   if (json.contains("label")) {
-    if (!json.at("label").is_number_integer() || json.at("label").get<int>() < 0)
-      throw Error(where + ".label: expected an integer >= 0");
+    if (!json.at("label").is_number_integer() || json.at("label").get<long long>() < 0 ||
+        json.at("label").get<long long>() > 1000000)
+      throw Error(where + ".label: expected an integer in 0..1000000");
     object.label = json.at("label").get<int>();
   } else {
     object.label = index;
@@ -158,7 +159,9 @@ SceneObject ObjectFromJson(const nlohmann::json& json, int index, const std::str
       if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
         throw Error(where + "." + key + ": expected [x, y, z]");
       auto& target = std::string(key) == "rotation" ? board.rotation : board.translation;
-      for (int k = 0; k < 3; ++k) target[static_cast<std::size_t>(k)] = v[static_cast<std::size_t>(k)].get<float>();
+      for (int k = 0; k < 3; ++k)
+        target[static_cast<std::size_t>(k)] =
+            CheckedNumber(v[static_cast<std::size_t>(k)], where + "." + key + "[" + std::to_string(k) + "]");
     }
     if (!(board.translation[2] > 0.0f)) throw Error(where + ".translation: the board must be in front (z > 0)");
     object.texture.kind = Texture::Kind::kChecker;
@@ -243,7 +246,9 @@ int Scene::MaxLabel() const {
   return label;
 }
 
-Scene SceneFromJson(const nlohmann::json& json, const std::string& base_dir, const std::string& where) {
+namespace {
+
+Scene ParseScene(const nlohmann::json& json, const std::string& base_dir, const std::string& where) {
   if (!json.is_object()) throw Error(where + ": expected a JSON object with an \"objects\" array");
   Scene scene;
   scene.name = json.value("name", std::string("scene"));
@@ -264,6 +269,17 @@ Scene SceneFromJson(const nlohmann::json& json, const std::string& base_dir, con
     scene.objects.push_back(
         ObjectFromJson(objects[i], static_cast<int>(i), base_dir, where + ".objects[" + std::to_string(i) + "]"));
   return scene;
+}
+
+}  // namespace
+
+Scene SceneFromJson(const nlohmann::json& json, const std::string& base_dir, const std::string& where) {
+  try {
+    return ParseScene(json, base_dir, where);
+  } catch (const nlohmann::json::exception& e) {
+    // A field of the wrong JSON type met by a typed accessor (e.g. "name": 3).
+    throw Error(where + ": invalid field: " + e.what());
+  }
 }
 
 Scene LoadScene(const std::filesystem::path& path) {

@@ -158,7 +158,9 @@ Texture TextureFromJson(const nlohmann::json& json, const std::string& base_dir,
   texture.period = ReadFloat(json, "period", texture.kind == Texture::Kind::kImage ? 1.0f : 0.1f, where);
   if (!(texture.period > 0.0f)) throw Error(where + ".period: must be > 0");
   texture.angle = ReadFloat(json, "angle", 0.0f, where) * std::numbers::pi_v<float> / 180.0f;
-  texture.seed = static_cast<std::uint32_t>(ReadFloat(json, "seed", 1.0f, where));
+  const float seed = ReadFloat(json, "seed", 1.0f, where);
+  if (seed < 0.0f) throw Error(where + ".seed: must be >= 0");
+  texture.seed = static_cast<std::uint32_t>(seed);
   if (texture.kind == Texture::Kind::kImage) {
     texture.image_path = RequireString(json, "path", where);
     std::filesystem::path path(texture.image_path);
