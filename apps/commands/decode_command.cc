@@ -66,7 +66,9 @@ void AddDecodeCommand(CLI::App& app) {
   command->add_option("--white-images", options->white_images,
                       "Folder of white images, MOD_*.RAW + .TXT or calibration archives data.C.* (default: the "
                       "capture's folder, searched recursively, so its whites/ sub-folder is found)");
-  command->add_option("--out", options->out, "Output: OUT.h5 writes a bundle, anything else a views folder")
+  command
+      ->add_option("--out", options->out,
+                   "Output: OUT.h5 writes a bundle, OUT.png an ESLF image, anything else a views folder")
       ->required();
   command->add_option("--demosaic", options->demosaic, "gradient | edge-aware | bilinear (default: gradient)");
   command->add_option("--colour", options->colour,

@@ -86,7 +86,9 @@ std::array<float, 9> CameraColourMatrix(const LytroMetadata& metadata) {
     balance = {gain->r / (0.5 * (gain->gr + gain->gb)), 1.0, gain->b / (0.5 * (gain->gr + gain->gb))};
   std::array<double, 9> ccm = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   if (metadata.colour.ccm) ccm = *metadata.colour.ccm;
-  const double bias = std::exp2(metadata.modulation_exposure_bias.value_or(0.0));
+  // LFToolbox v0.6: the F01's bias is stated one stop lower than it is applied (bias + 1); the Illum's as is.
+  const double stops = metadata.modulation_exposure_bias.value_or(0.0) + (metadata.camera_model == "F01" ? 1.0 : 0.0);
+  const double bias = std::exp2(stops);
   std::array<float, 9> matrix{};
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
