@@ -51,6 +51,77 @@ struct Accumulator {
   cv::Mat total;
 };
 
+// Adds one view, translated by `shift` with bilinear interpolation, to the accumulator in a single pass (no
+// translated copy of the view). Each of the four taps around the source position counts with its bilinear
+// coefficient times its ray weight (1 without weights), and taps outside the view count zero, so rays that fall
+// outside, or weigh nothing, never leak into the result (normalised convolution).
+void AccumulateShiftedViewLinear(const float* samples, const float* weights, const LightFieldShape& shape,
+                                 ImageShift shift, Accumulator& accumulator) {
+  const int width = shape.width;
+  const int height = shape.height;
+  const int channels = shape.channels;
+  const double source_x = -static_cast<double>(shift.dx);
+  const double source_y = -static_cast<double>(shift.dy);
+  const int offset_x = static_cast<int>(std::floor(source_x));
+  const int offset_y = static_cast<int>(std::floor(source_y));
+  const float fx = static_cast<float>(source_x - offset_x);
+  const float fy = static_cast<float>(source_y - offset_y);
+  const auto inside = [](long long i, int size) { return i >= 0 && i < size; };
+  const auto clamp = [](long long i, int size) { return static_cast<int>(std::clamp<long long>(i, 0, size - 1)); };
+
+  std::vector<int> column0(static_cast<std::size_t>(width));
+  std::vector<int> column1(static_cast<std::size_t>(width));
+  std::vector<float> a0(static_cast<std::size_t>(width));
+  std::vector<float> a1(static_cast<std::size_t>(width));
+  for (int x = 0; x < width; ++x) {
+    const long long i0 = static_cast<long long>(x) + offset_x;
+    const std::size_t k = static_cast<std::size_t>(x);
+    column0[k] = clamp(i0, width);
+    column1[k] = clamp(i0 + 1, width);
+    a0[k] = inside(i0, width) ? 1.0f - fx : 0.0f;
+    a1[k] = inside(i0 + 1, width) ? fx : 0.0f;
+  }
+  const std::size_t row_samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+  for (int y = 0; y < height; ++y) {
+    const long long j0 = static_cast<long long>(y) + offset_y;
+    const float b0 = inside(j0, height) ? 1.0f - fy : 0.0f;
+    const float b1 = inside(j0 + 1, height) ? fy : 0.0f;
+    if (b0 + b1 <= 0.0f) continue;
+    const int row0 = clamp(j0, height);
+    const int row1 = clamp(j0 + 1, height);
+    const float* p0 = samples + static_cast<std::size_t>(row0) * row_samples;
+    const float* p1 = samples + static_cast<std::size_t>(row1) * row_samples;
+    const float* q0 = weights == nullptr ? nullptr : weights + static_cast<std::size_t>(row0) * width;
+    const float* q1 = weights == nullptr ? nullptr : weights + static_cast<std::size_t>(row1) * width;
+    float* s = accumulator.sum.ptr<float>(y);
+    float* t = accumulator.total.ptr<float>(y);
+    for (int x = 0; x < width; ++x) {
+      const std::size_t k = static_cast<std::size_t>(x);
+      const int c0 = column0[k];
+      const int c1 = column1[k];
+      float w00 = b0 * a0[k];
+      float w01 = b0 * a1[k];
+      float w10 = b1 * a0[k];
+      float w11 = b1 * a1[k];
+      if (q0 != nullptr) {
+        w00 *= q0[c0];
+        w01 *= q0[c1];
+        w10 *= q1[c0];
+        w11 *= q1[c1];
+      }
+      const float w = w00 + w01 + w10 + w11;
+      if (w <= 0.0f) continue;
+      t[x] += w;
+      const float* s00 = p0 + c0 * channels;
+      const float* s01 = p0 + c1 * channels;
+      const float* s10 = p1 + c0 * channels;
+      const float* s11 = p1 + c1 * channels;
+      for (int c = 0; c < channels; ++c)
+        s[x * channels + c] += w00 * s00[c] + w01 * s01[c] + w10 * s10[c] + w11 * s11[c];
+    }
+  }
+}
+
 }  // namespace
 
 cv::Mat RefocusImage(const LightField& light_field, float disparity, const RefocusOptions& options) {
@@ -80,9 +151,15 @@ cv::Mat RefocusImage(const LightField& light_field, float disparity, const Refoc
     for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
       const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
       const ImageShift shift = ShearShift(view, centre, disparity);
-      TranslateImage(light_field.View(view), shift, shifted, options.interpolation, ShearBorder::kReplicate);
-      // Weights translate with zero outside the view, so rays that fall outside drop out smoothly.
       const cv::Mat weights = ViewWeights(light_field, view, options.use_ray_weights);
+      if (options.interpolation == ShearInterpolation::kLinear) {
+        AccumulateShiftedViewLinear(light_field.ViewData(view), weights.empty() ? nullptr : weights.ptr<float>(0),
+                                    shape, shift, local);
+        continue;
+      }
+      // Other interpolations: translate the view, then add it with its translated weights (zero outside the view,
+      // so rays that fall outside drop out smoothly).
+      TranslateImage(light_field.View(view), shift, shifted, options.interpolation, ShearBorder::kReplicate);
       if (weights.empty()) {
         TranslateImage(ones_row, {shift.dx, 0.0f}, inside_row, ShearInterpolation::kLinear, ShearBorder::kZero);
         TranslateImage(ones_column, {0.0f, shift.dy}, inside_column, ShearInterpolation::kLinear, ShearBorder::kZero);

@@ -32,6 +32,9 @@ TEST(RefocusTest, AtThePlaneDisparityReproducesTheCentreView) {
   const cv::Mat centre = plane.View(plane.shape().Centre());
   const cv::Mat refocused = RefocusImage(plane, d);
   EXPECT_GT(Psnr(centre, refocused), 35.0);
+  RefocusOptions cubic;
+  cubic.interpolation = ShearInterpolation::kCubic;
+  EXPECT_GT(Psnr(centre, RefocusImage(plane, d, cubic)), 40.0);  // sharper interpolation, smaller error
 }
 
 // Anywhere else the plane is defocused: lower gradient energy (sharpness) than the in-focus image, and blurrier
@@ -84,6 +87,9 @@ TEST(RefocusTest, ZeroWeightRaysAreIgnored) {
   }
   // Removing views changes the average only by the interpolation error of the remaining ones.
   EXPECT_GT(Psnr(clean, RefocusImage(plane, d)), 40.0);
+  RefocusOptions cubic;
+  cubic.interpolation = ShearInterpolation::kCubic;
+  EXPECT_GT(Psnr(RefocusImage(RenderPlane(d, 5, 48), d, cubic), RefocusImage(plane, d, cubic)), 40.0);
   RefocusOptions unweighted;
   unweighted.use_ray_weights = false;
   EXPECT_LT(Psnr(clean, RefocusImage(plane, d, unweighted)), 25.0);
