@@ -158,6 +158,10 @@ int SolveStage(const std::vector<Observation>& observations, const std::vector<s
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   if (!summary.IsSolutionUsable()) throw Error("calibration: the solver failed: " + summary.message);
+  spdlog::debug(
+      "solver: {:.2f} s total, preprocessor {:.2f} s, residuals {:.2f} s, jacobians {:.2f} s, linear solver {:.2f} s",
+      summary.total_time_in_seconds, summary.preprocessor_time_in_seconds, summary.residual_evaluation_time_in_seconds,
+      summary.jacobian_evaluation_time_in_seconds, summary.linear_solver_time_in_seconds);
   return static_cast<int>(summary.iterations.size());
 }
 

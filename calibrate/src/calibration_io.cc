@@ -93,7 +93,9 @@ json CalibrationToJson(const Calibration& c) {
       {"warnings", c.warnings}};
 }
 
-Calibration CalibrationFromJson(const json& j, const std::string& source) {
+namespace {
+
+Calibration ParseCalibration(const json& j, const std::string& source) {
   if (!j.is_object() || !j.contains("format") || j["format"] != "lfsp-calibration")
     throw Error(source + ": not an lfsp calibration file (field 'format' must be \"lfsp-calibration\")");
   Calibration c;
@@ -132,6 +134,16 @@ Calibration CalibrationFromJson(const json& j, const std::string& source) {
   return c;
 }
 
+}  // namespace
+
+Calibration CalibrationFromJson(const json& j, const std::string& source) {
+  try {
+    return ParseCalibration(j, source);
+  } catch (const json::exception& e) {  // a field of the wrong type
+    throw Error(source + ": malformed calibration: " + e.what());
+  }
+}
+
 void WriteCalibration(const Calibration& calibration, const std::filesystem::path& path) {
   AtomicOutput output(path);
   {
@@ -152,11 +164,7 @@ Calibration ReadCalibration(const std::filesystem::path& path) {
   } catch (const json::exception& e) {
     ThrowFileError(path.string(), std::string("not valid JSON: ") + e.what());
   }
-  try {
-    return CalibrationFromJson(j, path.string());
-  } catch (const json::exception& e) {  // a field of the wrong type
-    ThrowFileError(path.string(), std::string("malformed calibration: ") + e.what());
-  }
+  return CalibrationFromJson(j, path.string());
 }
 
 }  // namespace lfsp::calibrate
