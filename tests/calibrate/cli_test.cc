@@ -36,6 +36,9 @@ class CalibrateCli : public ::testing::Test {
       Bundle bundle;
       bundle.light_field = simulate::RenderCheckerboardLightField(options).light_field;
       SaveLightField(bundle, Path(n));
+      // The same capture as a folder of 16-bit PNG views, which carries no weights: dark views are then judged by
+      // their brightness.
+      if (n == 2) SaveLightField(bundle, (*dir_ / "board2_views").string(), 16);
     }
   }
   static void TearDownTestSuite() {
@@ -78,6 +81,23 @@ TEST_F(CalibrateCli, CalibratesAndRectifies) {
   const auto again = RunLfsp({"rectify", out, "--calibration", cal, "--out", (*dir_ / "twice.h5").string()});
   EXPECT_EQ(again.exit_status, 2);
   EXPECT_NE(again.err.find("already rectified"), std::string::npos) << again.err;
+}
+
+TEST_F(CalibrateCli, ViewsFolderWithoutWeightsSkipsTheSameDarkViews) {
+  const std::string cal = (*dir_ / "folder.json").string();
+  const std::string folder = (*dir_ / "board2_views").string();
+  const auto r = RunLfsp({"calibrate", Path(0), Path(1), Path(2), folder, "--corners", "12x9", "--out", cal});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  std::ifstream file(cal);
+  const nlohmann::json j = nlohmann::json::parse(file);
+  ASSERT_EQ(j["captures"].size(), 4u);
+  const auto& from_h5 = j["captures"][2];
+  const auto& from_folder = j["captures"][3];
+  EXPECT_EQ(from_folder["name"], folder);
+  EXPECT_GT(from_folder["dark_views"].size(), 0u);
+  EXPECT_NEAR(static_cast<double>(from_folder["views_used"].size()), static_cast<double>(from_h5["views_used"].size()),
+              6.0);
+  EXPECT_LT(from_folder["rms_mm"].get<double>(), 0.1);
 }
 
 TEST_F(CalibrateCli, WrongGridSizeNamesTheProblem) {
