@@ -1,0 +1,140 @@
+// Segment (issue 6): LFSP on antinous 9x9x512x512 at size 20 with the ground-truth disparity, against per-view SLIC
+// over all 81 views in the same run (the ratio is the issue's "no slower than per-view SLIC"), and the issue's
+// quality check on simulator scenes with ground-truth labels (9x9x512x512, size 20).
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench_case.h"
+#include "lfsp/core/load.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/segment/baselines.h"
+#include "lfsp/segment/lfsp.h"
+#include "lfsp/segment/metrics.h"
+#include "lfsp/simulate/render.h"
+
+namespace lfsp::bench {
+namespace {
+
+std::filesystem::path AntinousDir() { return std::filesystem::path(SharedDataDir()) / "hci" / "antinous"; }
+
+struct AntinousData {
+  Bundle bundle;
+  DisparityMap gt;
+  std::vector<DisparityMap> views;
+};
+
+// Loaded once per process (each case runs in its own process), untimed.
+AntinousData& Loaded() {
+  static AntinousData data;
+  return data;
+}
+
+void LoadAntinous() {
+  AntinousData& data = Loaded();
+  data.bundle = LoadLightField(AntinousDir());
+  data.gt = ReadPfm(AntinousDir() / "gt_disp_lowres.pfm");
+  data.views = segment::PropagateDisparity(data.gt, data.bundle.light_field.shape());
+}
+
+std::string Format(const char* format, double a, double b = 0, double c = 0, double d = 0) {
+  char text[256];
+  std::snprintf(text, sizeof(text), format, a, b, c, d);
+  return text;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "segment";
+  c.name = "lfsp-antinous";
+  c.input = "antinous 9x9x512x512, size 20, GT disparity";
+  c.target = "<= 5 s and <= slic-per-view";
+  c.needs_shared_data = true;
+  c.baseline = "slic-per-view-antinous";
+  c.repetitions = 3;
+  c.prepare = LoadAntinous;
+  c.run = [] {
+    const AntinousData& data = Loaded();
+    const segment::LfspResult result = segment::SegmentLightField(data.bundle.light_field, data.gt, {});
+    return Format("SS=%.3f (in frame %.3f) ELR=%.3f LPP=%.3f", segment::SelfSimilarity(result.labels, data.views),
+                  segment::SelfSimilarity(result.labels, data.views, true), segment::EffectiveLabelRatio(result.labels),
+                  segment::LabelsPerPixel(result.labels, data.gt, data.views));
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "segment";
+  c.name = "slic-per-view-antinous";
+  c.input = "antinous 9x9x512x512, size 20, 81 views";
+  c.target = "baseline (OpenCV SLIC)";
+  c.needs_shared_data = true;
+  c.repetitions = 3;
+  c.prepare = LoadAntinous;
+  c.run = [] {
+    const AntinousData& data = Loaded();
+    const Labels labels = segment::SlicPerView(data.bundle.light_field, {});
+    const Labels followed = segment::FollowToCentre(labels, data.views);
+    return Format("SS=%.3f (followed to centre)", segment::SelfSimilarity(followed, data.views));
+  };
+  return c;
+}
+
+namespace {
+
+struct SimulatedScene {
+  std::string name;
+  simulate::RenderedLightField rendered;
+  double slic_br = 0, slic_ue = 0, slic_ss = 0;
+};
+
+std::vector<SimulatedScene>& Scenes() {
+  static std::vector<SimulatedScene> scenes;
+  return scenes;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "segment";
+  c.name = "lfsp-simulated-scenes";
+  c.input = "planes, occluders, two-horses, spheres 9x9x512x512, size 20";
+  c.target = "SS<0.7, BR>=SLIC-0.02, UE<=SLIC";
+  c.repetitions = 1;
+  c.prepare = [] {
+    for (const char* name : {"planes", "occluders", "two-horses", "spheres"}) {
+      simulate::RenderOptions options;
+      options.width = options.height = 512;
+      SimulatedScene scene{name, simulate::RenderLightField(simulate::BuiltinScene(name), options)};
+      const Labels slic = segment::SlicPerView(scene.rendered.light_field, {});
+      scene.slic_br = segment::BoundaryRecall(slic, scene.rendered.labels);
+      scene.slic_ue = segment::UndersegmentationError(slic, scene.rendered.labels);
+      scene.slic_ss = segment::SelfSimilarity(segment::FollowToCentre(slic, scene.rendered.view_disparity),
+                                              scene.rendered.view_disparity);
+      Scenes().push_back(std::move(scene));
+    }
+  };
+  c.run = [] {
+    std::string quality;
+    for (const SimulatedScene& scene : Scenes()) {
+      const segment::LfspResult result =
+          segment::SegmentLightField(scene.rendered.light_field, scene.rendered.disparity, {});
+      const double ss = segment::SelfSimilarity(result.labels, scene.rendered.view_disparity);
+      const double br = segment::BoundaryRecall(result.labels, scene.rendered.labels);
+      const double ue = segment::UndersegmentationError(result.labels, scene.rendered.labels);
+      quality +=
+          scene.name + ": SS " + Format("%.2f (SLIC %.2f) BR %.3f (SLIC %.3f) ", ss, scene.slic_ss, br, scene.slic_br) +
+          Format("UE %.4f (SLIC %.4f) ELR %.2f; ", ue, scene.slic_ue, segment::EffectiveLabelRatio(result.labels));
+    }
+    return quality;
+  };
+  return c;
+}
+
+}  // namespace lfsp::bench
