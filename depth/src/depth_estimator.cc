@@ -66,12 +66,21 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);
     timer.Lap("local_aggregation");
   }
+  CostVolume raw_cost;  // kept only for the plane fit's data support
   if (options.regularise) {
-    cost = AggregateSemiGlobal(cost, centre, options.sgm);
+    CostVolume aggregated = AggregateSemiGlobal(cost, centre, options.sgm);
+    if (options.plane_fit) raw_cost = std::move(cost);
+    cost = std::move(aggregated);
     timer.Lap("semi_global");
   }
   DisparityEstimate estimate = SelectDisparity(cost, disparities);
   timer.Lap("select");
+  if (options.regularise && options.plane_fit) {
+    const DisparityMap support = DataSupport(raw_cost, estimate.disparity, disparities);
+    raw_cost = CostVolume();
+    PlaneFitRefine(estimate.disparity, support, centre, options.plane);
+    timer.Lap("plane_fit");
+  }
   if (options.regularise) {
     WeightedMedianRefine(estimate.disparity, centre, options.median_radius, options.median_sigma);
     timer.Lap("weighted_median");

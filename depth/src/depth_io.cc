@@ -34,12 +34,19 @@ nlohmann::json ToJson(const DepthOptions& options) {
                   {"detail_normalise_epsilon", options.cost.detail_normalise_epsilon},
                   {"colour_weight", options.cost.colour_weight},
                   {"colour_deadzone", options.cost.colour_deadzone},
-                  {"colour_truncation", options.cost.colour_truncation}};
+                  {"colour_truncation", options.cost.colour_truncation},
+                  {"half_patch_penalty", options.cost.half_patch_penalty}};
   json["occlusion"] = {{"canny_low", options.occlusion.canny_low},
                        {"canny_high", options.occlusion.canny_high},
                        {"blur_sigma", options.occlusion.blur_sigma},
                        {"radius", options.occlusion.radius}};
   json["sgm"] = {{"p1", options.sgm.p1}, {"p2", options.sgm.p2}, {"edge_sigma", options.sgm.edge_sigma}};
+  json["plane_fit"] = {{"enabled", options.plane_fit},
+                       {"region_size", options.plane.region_size},
+                       {"support_threshold", options.plane.support_threshold},
+                       {"inlier_distance", options.plane.inlier_distance},
+                       {"min_inlier_fraction", options.plane.min_inlier_fraction},
+                       {"min_support", options.plane.min_support}};
   json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
   return json;
 }

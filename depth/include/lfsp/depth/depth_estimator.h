@@ -7,6 +7,7 @@
 #include "lfsp/core/metadata.h"
 #include "lfsp/depth/cost_volume.h"
 #include "lfsp/depth/occlusion.h"
+#include "lfsp/depth/plane_fit.h"
 #include "lfsp/depth/refinement.h"
 #include "lfsp/depth/sgm.h"
 
@@ -23,6 +24,8 @@ struct DepthOptions {
   int aggregation_radius = 0;         // edge-aware (guided filter) cost aggregation before SGM (0 = off)
   float aggregation_epsilon = 1e-3f;  // guided filter regularisation (squared intensity units)
   SgmOptions sgm;
+  bool plane_fit = false;  // slanted-plane refinement of textureless pixels (see plane_fit.h)
+  PlaneFitOptions plane;
   int median_radius = 3;       // weighted-median refinement window radius (0 = off)
   float median_sigma = 0.05f;  // colour scale of the weighted median's weights
 };
