@@ -95,6 +95,36 @@ TEST(GridModel, F01GeometryWithNoise) { ExpectOnTarget(testing::F01LikeCamera(),
 
 TEST(GridModel, FullIllumGeometryWithNoise) { ExpectOnTarget(testing::IllumLikeCamera(), 13); }
 
+TEST(GridModel, RobustToCatsEyeBorderMicroImages) {
+  // Corner micro-images cut by the main lens: their centroids are biased by up to ~1 px; the fit must not follow.
+  testing::SyntheticCamera camera = testing::F01LikeCamera();
+  camera.cats_eye = 0.8;
+  const RawImage raw = testing::RenderWhiteRaw(camera, 0.8, 21);
+  const GridEstimate estimate =
+      EstimateLensletGrid(WhiteImageToGrey(raw, camera.format, "synthetic white"), PerturbedGuess(camera));
+  const GridErrors errors = Compare(estimate, camera);
+  // The border centroids really are off (otherwise this test would test nothing)...
+  double worst = 0.0;
+  int outliers = 0;
+  for (const MeasuredCentre& centre : estimate.centres) {
+    double tx = 0.0, ty = 0.0;
+    camera.NearestCentre(centre.x, centre.y, tx, ty);
+    worst = std::max(worst, std::hypot(centre.x - tx, centre.y - ty));
+    if (!centre.inlier) ++outliers;
+  }
+  std::printf(
+      "  cat's eye: worst centroid %.3f px off, %d outliers of %zu; model centres rms %.5f px, rotation "
+      "error %.2e, spacing error %.2e\n",
+      worst, outliers, estimate.centres.size(), errors.model_centre_rms, errors.rotation, errors.spacing_x_relative);
+  EXPECT_GT(worst, 0.3);
+  EXPECT_GT(outliers, 100);
+  // ... but the lattice is not.
+  EXPECT_LT(errors.model_centre_rms, 0.05);
+  EXPECT_LT(errors.rotation, 1e-4);
+  EXPECT_LT(errors.spacing_x_relative, 1e-4);
+  EXPECT_LT(errors.spacing_y_relative, 1e-4);
+}
+
 TEST(GridModel, UsableGridAndIndexingFollowTheAxisLens) {
   const testing::SyntheticCamera camera = testing::MiniCamera();
   const RawImage raw = testing::RenderWhiteRaw(camera, 0.8, 3);

@@ -133,7 +133,19 @@ double Modulation(const SyntheticCamera& camera, double x, double y) {
   const double inside = falloff * falloff;
   const double rx = (cx - 0.5 * camera.width) / camera.width, ry = (cy - 0.5 * camera.height) / camera.width;
   const double main_lens = 1.0 - 0.6 * (rx * rx + ry * ry);
-  return edge * inside * main_lens;
+  double cut = 1.0;
+  if (camera.cats_eye > 0.0) {
+    const double half_diagonal = 0.5 * std::hypot(camera.width, camera.height) / camera.width;
+    const double rho = std::hypot(rx, ry) / half_diagonal;  // 0 at the centre, 1 in the corners
+    if (rho > camera.cats_eye_start) {
+      const double depth = (rho - camera.cats_eye_start) / (1.0 - camera.cats_eye_start);
+      const double shift = camera.cats_eye * depth * depth * disc;
+      const double ux = -rx / std::hypot(rx, ry), uy = -ry / std::hypot(rx, ry);
+      const double r2 = std::hypot(x - (cx + shift * ux), y - (cy + shift * uy));
+      cut = std::clamp((disc - r2) / 1.2 + 0.5, 0.0, 1.0);
+    }
+  }
+  return edge * inside * main_lens * cut;
 }
 
 RawImage RenderWhiteRaw(const SyntheticCamera& camera, double exposure, std::uint64_t seed) {

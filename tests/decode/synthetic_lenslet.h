@@ -26,6 +26,11 @@ struct SyntheticCamera {
   double full_well = 9000.0;  // electrons at the white level
   double read_noise = 1.5;    // DN
   bool noise = true;
+  // Main-lens vignetting of the border micro-images ("cat's eye"): beyond `cats_eye_start` of the half-diagonal,
+  // each disc is cut by a second disc shifted towards the sensor centre by up to `cats_eye` disc radii in the
+  // corners, so their intensity centroids move off the lens centres. 0 = off.
+  double cats_eye = 0.0;
+  double cats_eye_start = 0.6;
 
   // Truth: the centre of lens (i, j) counted from the axis lens (rows with odd j shifted by +half a pitch).
   void Centre(int i, int j, double& x, double& y) const;
