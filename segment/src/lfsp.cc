@@ -120,6 +120,8 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   result.iterations_run = report.iterations;
   result.label_moves = report.moves;
   result.moves_per_iteration = report.moves_per_iteration;
+  result.sweep_seconds = report.sweep_seconds;
+  result.timings.plane_seconds = report.plane_seconds;
   result.timings.refine_seconds = SecondsSince(step);
 
   step = std::chrono::steady_clock::now();

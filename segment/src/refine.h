@@ -20,6 +20,8 @@ struct RefineReport {
   int iterations = 0;
   long long moves = 0;
   std::vector<long long> moves_per_iteration;
+  std::vector<double> sweep_seconds;  // wall time of each label-move sweep
+  double plane_seconds = 0.0;         // wall time of all plane-smoothing steps
   int occlusion_boundaries = 0;
   int hinge_boundaries = 0;
   int coplanar_boundaries = 0;

@@ -12,7 +12,8 @@ struct LfspTimings {
   double lab_seconds = 0.0;
   double initial_seconds = 0.0;     // centre-view SLIC + plane fit
   double projection_seconds = 0.0;  // projection into all views + filling
-  double refine_seconds = 0.0;      // block-coordinate descent
+  double refine_seconds = 0.0;      // block-coordinate descent (label sweeps + plane steps)
+  double plane_seconds = 0.0;       // of which plane smoothing
   double cleanup_seconds = 0.0;     // connectivity
   double total_seconds = 0.0;
 };
@@ -24,6 +25,7 @@ struct LfspResult {
   int iterations_run = 0;     // outer BCD iterations actually run
   long long label_moves = 0;  // rays that changed label during the BCD
   std::vector<long long> moves_per_iteration;
+  std::vector<double> sweep_seconds;  // wall time of each label-move sweep of the BCD
   LfspTimings timings;
 };
 

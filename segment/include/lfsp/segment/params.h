@@ -13,8 +13,10 @@ namespace lfsp::segment {
 //   E_b  = sum over the 80-neighbour clique q of pen(q) [s(q) != k] / 8   (Eq. 7; pen = spatial/angular/mixed)
 //   E    = E_c + lambda_p E_p + lambda_d E_d + lambda_b E_b
 // The two normalisations the paper leaves implicit are explicit here: colour is measured in units of
-// `colour_scale` Lab units (so lambda_p = 1 behaves like SLIC's compactness m = colour_scale), and the clique sum is
-// divided by 8, so one whole ring of differing spatial neighbours costs E_pen_s.
+// `colour_scale` Lab units (lambda_p behaves like SLIC's compactness m = colour_scale sqrt(lambda_p), so the
+// defaults give SLIC's usual m = 10), and the clique sum is divided by 8, so one whole ring of differing spatial
+// neighbours costs E_pen_s. Where the clique is cut (image border, edge views) the counts are rescaled to the full
+// clique.
 // The planes minimise lambda_d sum E_d + lambda_s sum E_s (Eq. 5) with boundary types occlusion / hinge / coplanar.
 struct LfspParams {
   int size = 20;                  // superpixel size: grid step of the centre-view seeds, pixels
