@@ -11,18 +11,20 @@ namespace {
 
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 
-// Bilinear sample of an interleaved float image with kChannels channels at (x, y), clamped to the image.
-template <int kChannels>
-inline void Bilinear(const float* data, std::size_t stride, int width, int height, double x, double y, float* out) {
-  x = std::clamp(x, 0.0, width - 1.0001);
-  y = std::clamp(y, 0.0, height - 1.0001);
+// Bilinear samples of the RGB image and the grey white image at the same sensor point (x, y), clamped to the
+// image: the position, the 4 weights and the addresses are computed once for both.
+inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, double x, double y, float* colour, float* white) {
+  x = std::clamp(x, 0.0, rgb.cols - 1.0001);
+  y = std::clamp(y, 0.0, rgb.rows - 1.0001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const auto fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-  const float* p = data + static_cast<std::size_t>(y0) * stride + static_cast<std::size_t>(x0) * kChannels;
-  const float* q = p + stride;
   const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
-  for (int c = 0; c < kChannels; ++c)
-    out[c] = w00 * p[c] + w01 * p[kChannels + c] + w10 * q[c] + w11 * q[kChannels + c];
+  const float* p = rgb.ptr<float>(y0) + 3 * x0;
+  const float* q = rgb.ptr<float>(y0 + 1) + 3 * x0;
+  for (int c = 0; c < 3; ++c) colour[c] = w00 * p[c] + w01 * p[3 + c] + w10 * q[c] + w11 * q[3 + c];
+  const float* g = grey.ptr<float>(y0) + x0;
+  const float* h = grey.ptr<float>(y0 + 1) + x0;
+  *white = w00 * g[0] + w01 * g[1] + w10 * h[0] + w11 * h[1];
 }
 
 // Catmull-Rom (Keys, a = -0.5) weights of the 4 samples around fraction f in [0, 1).
@@ -100,10 +102,6 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
   const double pitch_x = c * grid.spacing_x, pitch_y = s * grid.spacing_x;
   // Rays beyond the micro-lens radius see the neighbouring micro-image: they get no weight.
   const double lens_radius = 0.5 * grid.spacing_x;
-  const float* rgb_data = rgb.ptr<float>(0);
-  const std::size_t rgb_stride = rgb.step1();
-  const float* white_data = grey_white.ptr<float>(0);
-  const std::size_t white_stride = grey_white.step1();
   std::array<float, 9> m = colour.matrix;
   for (float& value : m) value *= colour.scale;
   // Per view: the sensor offset of its rays from a lens centre, and whether they stay inside the lens.
@@ -135,13 +133,11 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
         for (std::size_t k = 0; k < static_cast<std::size_t>(view_count); ++k) {
           if (!inside_lens[k]) continue;
           float in[3];
-          const double px = cx + offset_x[k], py = cy + offset_y[k];
-          Bilinear<3>(rgb_data, rgb_stride, rgb.cols, rgb.rows, px, py, in);
+          SampleBoth(rgb, grey_white, cx + offset_x[k], cy + offset_y[k], in, &white[k * lenses + lens]);
           float* out = &samples[(k * lenses + lens) * 3];
           out[0] = m[0] * in[0] + m[1] * in[1] + m[2] * in[2];
           out[1] = m[3] * in[0] + m[4] * in[1] + m[5] * in[2];
           out[2] = m[6] * in[0] + m[7] * in[1] + m[8] * in[2];
-          Bilinear<1>(white_data, white_stride, grey_white.cols, grey_white.rows, px, py, &white[k * lenses + lens]);
         }
       }
       // Hexagonal to rectangular, view by view: cubic interpolation along the lens row.
