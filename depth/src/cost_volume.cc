@@ -15,22 +15,33 @@ namespace {
 
 // One non-centre view: where its samples are, how far it sits from the centre view, and its angular sector.
 struct ViewPlan {
-  const float* colour;  // interleaved RGB rows of the view
-  const float* detail;  // the same for its detail image (nullptr without the detail term)
-  float du;             // u - uc
-  float dv;             // v - vc
+  const float* features;  // the view's feature rows: R, G, B, detail interleaved (kFeatureChannels per pixel)
+  float du;               // u - uc
+  float dv;               // v - vc
   int sector;
 };
 
-// Bilinear samples of one view row at (x + sx, y + sy), compared with the centre row, added to `accumulator`:
-// accumulator[x] += weight * min(sum over channels of |sample - centre|, truncation); rows hold `channels`
-// interleaved samples per pixel (1 or 3). Samples beyond the border are clamped. Built twice (AVX2 and generic) and
-// chosen at run time, so the interleaved inner loop vectorises where it can.
-__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* view, int channels, int width,
-                                                                         int height, int y, float sx, float sy,
-                                                                         const float* centre_row, float deadzone,
-                                                                         float truncation, float weight,
-                                                                         float* differences, float* accumulator) {
+constexpr int kFeatureChannels = 4;
+
+// The per-view cost terms (CostOptions), as plain numbers for the inner loop.
+struct TermWeights {
+  float colour_weight;
+  float colour_deadzone;
+  float colour_truncation;
+  float detail_truncation;
+};
+
+// Bilinear samples of one view's feature row at (x + sx, y + sy), compared with the centre view's feature row:
+// cost[x] = colour_weight * min(max(|dR| + |dG| + |dB| - deadzone, 0), truncation) + min(|d detail|, truncation),
+// added to total[x], and to half_a[x] where in_half_a[x] is 1 (if half_a is not null). Samples beyond the border are
+// clamped. `differences` is scratch for (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and
+// chosen at run time: the interpolation runs over the interleaved samples as one contiguous, vectorised loop.
+__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* view, int width, int height,
+                                                                         int y, float sx, float sy,
+                                                                         const float* centre_row, TermWeights terms,
+                                                                         float* differences, float* total,
+                                                                         const float* in_half_a, float* half_a) {
+  constexpr int kC = kFeatureChannels;
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
   const float ax = sx - fx;
@@ -39,7 +50,7 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   const int iy = static_cast<int>(fy);
   const int y0 = std::clamp(y + iy, 0, height - 1);
   const int y1 = std::clamp(y + iy + 1, 0, height - 1);
-  const std::size_t stride = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+  const std::size_t stride = static_cast<std::size_t>(width) * kC;
   const float* row0 = view + static_cast<std::size_t>(y0) * stride;
   const float* row1 = view + static_cast<std::size_t>(y1) * stride;
   const float w00 = (1.0f - ax) * (1.0f - ay);
@@ -50,78 +61,86 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   // Columns whose two taps are both inside the row: one contiguous run over the interleaved samples.
   const int x_begin = std::clamp(-ix, 0, width);
   const int x_end = std::clamp(width - 1 - ix, x_begin, width);
-  const int shift = channels * ix;
-  for (int p = channels * x_begin; p < channels * x_end; ++p) {
+  const int shift = kC * ix;
+  for (int p = kC * x_begin; p < kC * x_end; ++p) {
     const int q = p + shift;
-    const float sample = w00 * row0[q] + w01 * row0[q + channels] + w10 * row1[q] + w11 * row1[q + channels];
+    const float sample = w00 * row0[q] + w01 * row0[q + kC] + w10 * row1[q] + w11 * row1[q + kC];
     differences[p] = std::abs(sample - centre_row[p]);
   }
   // The few columns near the border: clamp each tap.
   auto clamped = [&](int x) {
-    const int c0 = std::clamp(x + ix, 0, width - 1) * channels;
-    const int c1 = std::clamp(x + ix + 1, 0, width - 1) * channels;
-    for (int c = 0; c < channels; ++c) {
+    const int c0 = std::clamp(x + ix, 0, width - 1) * kC;
+    const int c1 = std::clamp(x + ix + 1, 0, width - 1) * kC;
+    for (int c = 0; c < kC; ++c) {
       const float sample = w00 * row0[c0 + c] + w01 * row0[c1 + c] + w10 * row1[c0 + c] + w11 * row1[c1 + c];
-      differences[channels * x + c] = std::abs(sample - centre_row[channels * x + c]);
+      differences[kC * x + c] = std::abs(sample - centre_row[kC * x + c]);
     }
   };
   for (int x = 0; x < x_begin; ++x) clamped(x);
   for (int x = x_end; x < width; ++x) clamped(x);
 
-  if (channels == 3) {
-    for (int x = 0; x < width; ++x) {
-      const float sum = differences[3 * x] + differences[3 * x + 1] + differences[3 * x + 2];
-      accumulator[x] += weight * std::min(std::max(sum - deadzone, 0.0f), truncation);
-    }
-  } else {
-    for (int x = 0; x < width; ++x) {
-      accumulator[x] += weight * std::min(std::max(differences[x] - deadzone, 0.0f), truncation);
-    }
+  // Separate, non-aliasing buffers so these loops vectorise too.
+  const float* __restrict d = differences;
+  float* __restrict cost = differences + kC * width;
+  for (int x = 0; x < width; ++x) {
+    const float colour = std::min(std::max(d[kC * x] + d[kC * x + 1] + d[kC * x + 2] - terms.colour_deadzone, 0.0f),
+                                  terms.colour_truncation);
+    cost[x] = terms.colour_weight * colour + std::min(d[kC * x + 3], terms.detail_truncation);
+  }
+  for (int x = 0; x < width; ++x) total[x] += cost[x];
+  if (half_a != nullptr) {
+    for (int x = 0; x < width; ++x) half_a[x] += cost[x] * in_half_a[x];
   }
 }
 
-// The high-pass detail image of every view, grey (mean of RGB; the colour of faint texture adds little, measured),
-// one channel, views in the light field's order.
-std::vector<float> MakeDetailImages(const LightField& light_field, const CostOptions& options) {
-  const float sigma = options.detail_sigma;
+// Every view as kFeatureChannels interleaved samples per pixel: its RGB, and its detail image: the high-pass grey
+// image (mean of RGB; the colour of faint texture adds little, measured), optionally divided by its local RMS.
+// Without the detail term the fourth channel is zero. One array, views in the light field's order.
+std::vector<float> MakeFeatureImages(const LightField& light_field, const CostOptions& options) {
   const LightFieldShape& shape = light_field.shape();
-  std::vector<float> detail(shape.Views() * shape.ViewPixels());
+  std::vector<float> features(shape.Views() * shape.ViewPixels() * kFeatureChannels);
   const int views = static_cast<int>(shape.Views());
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < views; ++i) {
     const ViewIndex view = ViewFromCameraNumber(i, shape.nu);
-    cv::Mat grey;
-    cv::transform(light_field.View(view), grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
-    cv::Mat target(shape.height, shape.width, CV_32FC1,
-                   detail.data() + static_cast<std::size_t>(i) * shape.ViewPixels());
-    cv::GaussianBlur(grey, target, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
-    cv::subtract(grey, target, target);
-    if (options.detail_normalise_sigma > 0.0f) {
-      cv::Mat energy;
-      cv::multiply(target, target, energy);
-      cv::GaussianBlur(energy, energy, cv::Size(), options.detail_normalise_sigma, options.detail_normalise_sigma,
-                       cv::BORDER_REFLECT);
-      cv::sqrt(energy, energy);
-      energy += options.detail_normalise_epsilon;
-      cv::divide(target, energy, target);
+    const cv::Mat rgb = light_field.View(view);
+    cv::Mat detail(shape.height, shape.width, CV_32FC1, cv::Scalar(0));
+    if (options.detail_sigma > 0.0f) {
+      cv::Mat grey;
+      cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
+      cv::GaussianBlur(grey, detail, cv::Size(), options.detail_sigma, options.detail_sigma, cv::BORDER_REFLECT);
+      cv::subtract(grey, detail, detail);
+      if (options.detail_normalise_sigma > 0.0f) {
+        cv::Mat energy;
+        cv::multiply(detail, detail, energy);
+        cv::GaussianBlur(energy, energy, cv::Size(), options.detail_normalise_sigma, options.detail_normalise_sigma,
+                         cv::BORDER_REFLECT);
+        cv::sqrt(energy, energy);
+        energy += options.detail_normalise_epsilon;
+        cv::divide(detail, energy, detail);
+      }
     }
+    cv::Mat target(shape.height, shape.width, CV_32FC(kFeatureChannels),
+                   features.data() + static_cast<std::size_t>(i) * shape.ViewPixels() * kFeatureChannels);
+    const cv::Mat sources[] = {rgb, detail};
+    const int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
+    cv::mixChannels(sources, 2, &target, 1, from_to, 4);
   }
-  return detail;
+  return features;
 }
 
-const float* DetailView(const std::vector<float>& detail, const LightFieldShape& shape, ViewIndex view) {
-  return detail.data() + static_cast<std::size_t>(CameraNumber(view, shape.nu)) * shape.ViewPixels();
+const float* FeatureView(const std::vector<float>& features, const LightFieldShape& shape, ViewIndex view) {
+  return features.data() +
+         static_cast<std::size_t>(CameraNumber(view, shape.nu)) * shape.ViewPixels() * kFeatureChannels;
 }
 
-std::vector<ViewPlan> PlanViews(const LightField& light_field, const std::vector<float>& detail) {
-  const LightFieldShape& shape = light_field.shape();
+std::vector<ViewPlan> PlanViews(const LightFieldShape& shape, const std::vector<float>& features) {
   const ViewIndex centre = shape.Centre();
   std::vector<ViewPlan> plans;
   for (int v = 0; v < shape.nv; ++v) {
     for (int u = 0; u < shape.nu; ++u) {
       if (u == centre.u && v == centre.v) continue;
-      const float* detail_view = detail.empty() ? nullptr : DetailView(detail, shape, {u, v});
-      plans.push_back({light_field.ViewData({u, v}), detail_view, static_cast<float>(u - centre.u),
+      plans.push_back({FeatureView(features, shape, {u, v}), static_cast<float>(u - centre.u),
                        static_cast<float>(v - centre.v), SectorOfOffset(u - centre.u, v - centre.v)});
     }
   }
@@ -178,79 +197,85 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   const int width = shape.width;
   const int height = shape.height;
   const int labels = static_cast<int>(disparities.size());
-  const bool use_detail = options.detail_sigma > 0.0f;
-  const bool use_colour = options.colour_weight > 0.0f;
-  if (!use_detail && !use_colour) throw Error("depth: the cost needs the detail or the colour term");
-  const std::vector<float> detail = use_detail ? MakeDetailImages(light_field, options) : std::vector<float>{};
-  const float* centre = light_field.ViewData(shape.Centre());
-  const float* centre_detail = use_detail ? DetailView(detail, shape, shape.Centre()) : nullptr;
-  const std::vector<ViewPlan> plans = PlanViews(light_field, detail);
+  if (!(options.detail_sigma > 0.0f) && !(options.colour_weight > 0.0f)) {
+    throw Error("depth: the cost needs the detail or the colour term");
+  }
+  const std::vector<float> features = MakeFeatureImages(light_field, options);
+  const float* centre = FeatureView(features, shape, shape.Centre());
+  const std::vector<ViewPlan> plans = PlanViews(shape, features);
+  const TermWeights terms{options.colour_weight, options.colour_deadzone, options.colour_truncation,
+                          options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f};
   const SplitTable splits = MakeSplitTable(plans);
   const float all_views = static_cast<float>(plans.size());
   const int tile_rows = std::max(1, options.tile_rows);
   const int tiles = (height + tile_rows - 1) / tile_rows;
-  const std::size_t row_samples = static_cast<std::size_t>(width) * 3;
+  const std::size_t row_samples = static_cast<std::size_t>(width) * kFeatureChannels;
 
   CostVolume volume(width, height, labels);
 #pragma omp parallel
   {
-    // Per-thread scratch: one accumulator row set per sector for the tile, and one row of differences.
-    std::vector<float> sector_sums(static_cast<std::size_t>(kSectors) * static_cast<std::size_t>(tile_rows) *
-                                   static_cast<std::size_t>(width));
-    std::vector<float> differences(row_samples);
-    auto sector_row = [&](int sector, int row) {
-      return sector_sums.data() +
-             (static_cast<std::size_t>(sector) * static_cast<std::size_t>(tile_rows) + static_cast<std::size_t>(row)) *
-                 static_cast<std::size_t>(width);
+    // Per-thread scratch for one tile: per label and row, the sum over all views and over the views in half A of
+    // each pixel's split; per sector and row, whether that sector lies in half A of the pixel's split (0/1).
+    // Views are the outer loop, so each view's rows for the tile stay in cache across all labels.
+    const std::size_t tile_size = static_cast<std::size_t>(tile_rows) * static_cast<std::size_t>(width);
+    std::vector<float> totals(static_cast<std::size_t>(labels) * tile_size);
+    std::vector<float> halves(occlusion ? totals.size() : 0);
+    std::vector<float> in_half_a(occlusion ? static_cast<std::size_t>(kSectors) * tile_size : 0);
+    std::vector<float> differences(row_samples + static_cast<std::size_t>(width));  // samples, then costs
+    auto row_of = [&](std::vector<float>& buffer, int index, int row) {
+      return buffer.data() + static_cast<std::size_t>(index) * tile_size +
+             static_cast<std::size_t>(row) * static_cast<std::size_t>(width);
     };
 #pragma omp for schedule(dynamic)
     for (int tile = 0; tile < tiles; ++tile) {
       const int y_begin = tile * tile_rows;
       const int y_end = std::min(height, y_begin + tile_rows);
-      for (int l = 0; l < labels; ++l) {
-        const float d = disparities[static_cast<std::size_t>(l)];
-        std::fill(sector_sums.begin(), sector_sums.end(), 0.0f);
-        for (const ViewPlan& plan : plans) {
+      std::fill(totals.begin(), totals.end(), 0.0f);
+      std::fill(halves.begin(), halves.end(), 0.0f);
+      if (occlusion) {
+        for (int y = y_begin; y < y_end; ++y) {
+          const unsigned char* split = occlusion->split.ptr<unsigned char>(y);
+          for (int s = 0; s < kSectors; ++s) {
+            float* mask = row_of(in_half_a, s, y - y_begin);
+            for (int x = 0; x < width; ++x) mask[x] = splits.in_half_a[split[x]][s] ? 1.0f : 0.0f;
+          }
+        }
+      }
+      for (const ViewPlan& plan : plans) {
+        for (int l = 0; l < labels; ++l) {
           // DESIGN.md: the centre pixel (x, y) at disparity d is seen in view (u, v) at (x - du*d, y - dv*d).
+          const float d = disparities[static_cast<std::size_t>(l)];
           const float sx = -plan.du * d;
           const float sy = -plan.dv * d;
           for (int y = y_begin; y < y_end; ++y) {
-            float* accumulator = sector_row(plan.sector, y - y_begin);
-            if (use_detail) {
-              AccumulateRowCost(plan.detail, 1, width, height, y, sx, sy,
-                                centre_detail + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), 0.0f,
-                                options.detail_truncation, 1.0f, differences.data(), accumulator);
-            }
-            if (use_colour) {
-              AccumulateRowCost(plan.colour, 3, width, height, y, sx, sy,
-                                centre + static_cast<std::size_t>(y) * row_samples, options.colour_deadzone,
-                                options.colour_truncation, options.colour_weight, differences.data(), accumulator);
-            }
+            const int row = y - y_begin;
+            AccumulateRowCost(plan.features, width, height, y, sx, sy,
+                              centre + static_cast<std::size_t>(y) * row_samples, terms, differences.data(),
+                              row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
+                              occlusion ? row_of(halves, l, row) : nullptr);
           }
         }
-        for (int y = y_begin; y < y_end; ++y) {
-          const unsigned char* candidate = occlusion ? occlusion->candidate.ptr<unsigned char>(y) : nullptr;
-          const unsigned char* split = occlusion ? occlusion->split.ptr<unsigned char>(y) : nullptr;
-          for (int x = 0; x < width; ++x) {
-            std::array<float, kSectors> sums;
-            float total = 0.0f;
-            for (int s = 0; s < kSectors; ++s) {
-              sums[s] = sector_row(s, y - y_begin)[x];
-              total += sums[s];
-            }
+      }
+      for (int y = y_begin; y < y_end; ++y) {
+        const int row = y - y_begin;
+        const unsigned char* candidate = occlusion ? occlusion->candidate.ptr<unsigned char>(y) : nullptr;
+        const unsigned char* split = occlusion ? occlusion->split.ptr<unsigned char>(y) : nullptr;
+        for (int x = 0; x < width; ++x) {
+          float* curve = volume.Curve(y, x);
+          const bool use_halves =
+              candidate != nullptr && candidate[x] != 0 && splits.views_a[split[x]] > 0 && splits.views_b[split[x]] > 0;
+          for (int l = 0; l < labels; ++l) {
+            const float total = row_of(totals, l, row)[x];
             float cost = total / all_views;
-            if (candidate != nullptr && candidate[x] != 0 && splits.views_a[split[x]] > 0 &&
-                splits.views_b[split[x]] > 0) {
+            if (use_halves) {
               // Near an edge: the background is occluded in the views on the occluder's side, so keep the
               // better of the two halves split along the edge.
               const int j = split[x];
-              float half_a = 0.0f;
-              for (int s = 0; s < kSectors; ++s) half_a += splits.in_half_a[j][s] ? sums[s] : 0.0f;
-              const float half_b = total - half_a;
-              const float half = std::min(half_a / splits.views_a[j], half_b / splits.views_b[j]);
+              const float half_a = row_of(halves, l, row)[x];
+              const float half = std::min(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
               cost = std::min(cost, options.half_patch_penalty * half);
             }
-            volume.Curve(y, x)[l] = cost;
+            curve[l] = cost;
           }
         }
       }

@@ -61,7 +61,7 @@ struct CostOptions {
   // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is
   // still lower: half the views are noisier, so on textured, unoccluded surfaces the whole patch must win.
   float half_patch_penalty = 1.0f;
-  int tile_rows = 8;  // rows per work item: the views' rows of one tile stay in cache across labels
+  int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile (the
