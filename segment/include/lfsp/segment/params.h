@@ -27,7 +27,7 @@ struct LfspParams {
   double pen_spatial = 1.0;       // E_pen_s, spatial neighbours (Table II)
   double pen_mixed = 0.7;         // E_pen_m, mixed neighbours (Table II)
   double pen_angular = 4.0;       // E_pen_a, angular neighbours (Table II)
-  double colour_scale = 10.0;     // Lab distance worth one unit of energy
+  double colour_scale = 7.0711;   // Lab distance worth one unit of energy (10/sqrt2: lambda_p = 2 is SLIC m = 10)
   int slic_iterations = 10;       // iterations of the initial centre-view SLIC (colour + position + disparity)
   int iterations = 10;            // outer block-coordinate-descent iterations (label moves + plane smoothing)
   int plane_iterations = 10;      // inner plane-smoothing iterations (boundary typing + plane refit) per outer one
