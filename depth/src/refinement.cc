@@ -4,7 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc.hpp>
+#include <utility>
+#include <vector>
 
 #include "lfsp/core/error.h"
 
@@ -39,11 +40,45 @@ DisparityEstimate SelectDisparity(const CostVolume& cost, const std::vector<floa
 
 void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, int radius, float sigma) {
   if (radius <= 0) return;
-  cv::Mat guide8;
-  guide_rgb.convertTo(guide8, CV_8UC3, 255.0);
-  cv::Mat filtered;
-  cv::ximgproc::weightedMedianFilter(guide8, disparity.Mat(), filtered, radius, sigma * 255.0f);
-  filtered.copyTo(disparity.Mat());
+  if (guide_rgb.type() != CV_32FC3 || guide_rgb.rows != disparity.height() || guide_rgb.cols != disparity.width()) {
+    throw Error("weighted median: the guide must be a float RGB image of the disparity map's size");
+  }
+  // Our own implementation: OpenCV's ximgproc::weightedMedianFilter was measured to give different results on
+  // repeated calls in one process, and results must be reproducible.
+  const DisparityMap source = disparity;
+  const float inverse = 1.0f / (2.0f * sigma * sigma);
+  const int width = disparity.width();
+  const int height = disparity.height();
+#pragma omp parallel
+  {
+    std::vector<std::pair<float, float>> samples;  // (disparity, weight)
+#pragma omp for schedule(static)
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const cv::Vec3f centre = guide_rgb.at<cv::Vec3f>(y, x);
+        samples.clear();
+        float total = 0.0f;
+        for (int yy = std::max(0, y - radius); yy <= std::min(height - 1, y + radius); ++yy) {
+          const cv::Vec3f* row = guide_rgb.ptr<cv::Vec3f>(yy);
+          for (int xx = std::max(0, x - radius); xx <= std::min(width - 1, x + radius); ++xx) {
+            const cv::Vec3f difference = row[xx] - centre;
+            const float weight = std::exp(-difference.dot(difference) * inverse);
+            samples.emplace_back(source.at(yy, xx), weight);
+            total += weight;
+          }
+        }
+        std::sort(samples.begin(), samples.end());
+        float cumulative = 0.0f;
+        for (const auto& [value, weight] : samples) {
+          cumulative += weight;
+          if (cumulative >= 0.5f * total) {
+            disparity.at(y, x) = value;
+            break;
+          }
+        }
+      }
+    }
+  }
 }
 
 }  // namespace lfsp::depth

@@ -18,8 +18,8 @@ struct DisparityEstimate {
 // away from the best.
 DisparityEstimate SelectDisparity(const CostVolume& cost, const std::vector<float>& disparities);
 
-// Weighted median of the disparity in a (2 radius + 1)^2 window, weights exp(-|colour difference| / sigma) from the
-// centre view (OpenCV ximgproc), which removes isolated outliers while keeping depth edges on colour edges.
+// Weighted median of the disparity in a (2 radius + 1)^2 window, weights exp(-|colour difference|^2 / (2 sigma^2))
+// from the centre view, which removes isolated outliers while keeping depth edges on colour edges.
 void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, int radius, float sigma);
 
 }  // namespace lfsp::depth
