@@ -38,11 +38,16 @@ void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
   if (!bundle.labels) throw Error(options.input + ": no 'labels' dataset (write it with lfsp segment)");
   std::optional<DisparityMap> gt_disparity;
   if (!options.gt_disparity.empty()) gt_disparity = ReadPfm(options.gt_disparity);
+  std::string gt_disparity_source = options.gt_disparity;
   std::optional<Labels> gt_labels;
   if (!options.gt_labels.empty()) {
     Bundle gt = ReadBundle(options.gt_labels);
     if (!gt.labels) throw Error(options.gt_labels + ": no 'labels' dataset (ground-truth labels of every ray)");
     gt_labels = std::move(gt.labels);
+    if (!gt_disparity && gt.disparity) {  // a simulated bundle carries its ground-truth disparity too
+      gt_disparity = std::move(gt.disparity);
+      gt_disparity_source = options.gt_labels + " (its disparity)";
+    }
   }
 
   segment::EvaluationInputs inputs;
@@ -65,7 +70,7 @@ void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
 
   nlohmann::json report = segment::EvaluateSegmentation(inputs, evaluation);
   report["input"] = options.input;
-  report["self_similarity_disparity"] = gt_disparity ? options.gt_disparity : std::string("none (give --gt-disparity)");
+  report["self_similarity_disparity"] = gt_disparity ? gt_disparity_source : std::string("none (give --gt-disparity)");
   if (gt_labels) report["gt_labels"] = options.gt_labels;
   if (!gt_disparity) spdlog::warn("no --gt-disparity: self-similarity and labels per pixel are not reported");
   std::cout << report.dump(2) << "\n";
