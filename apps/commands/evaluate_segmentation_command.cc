@@ -90,7 +90,7 @@ void AddEvaluateSegmentation(CLI::App& evaluate) {
   command
       ->add_option("--gt-disparity", options->gt_disparity,
                    "Ground-truth centre-view disparity (PFM) for self-similarity, labels per pixel and the refocus "
-                   "sweep (default: none)")
+                   "sweep (default: the --gt-labels bundle's disparity if it has one, else none)")
       ->check(CLI::ExistingFile);
   command
       ->add_option("--gt-labels", options->gt_labels,
