@@ -38,7 +38,7 @@ testing::ShiftLightField* ShiftSceneTest::scene_ = nullptr;
 
 TEST_F(ShiftSceneTest, FullMethodRecoversPlaneAndOccluder) {
   const DepthEvaluation e = EstimateAndScore(scene_->light_field, scene_->disparity, true, true);
-  // Measured BadPix 0.07 3.1 %, MSE x100 3.9 (9x9x96x96, 8 px frame); the bounds leave room for harmless changes,
+  // Measured BadPix 0.07 3.2 %, MSE x100 4.4 (9x9x96x96, 8 px frame); the bounds leave room for harmless changes,
   // not for a broken method (plain winner-take-all without occlusion handling: ~15 % / ~60).
   EXPECT_LT(e.all.badpix_007, 5.0);
   EXPECT_LT(e.all.mse_x100, 6.0);
@@ -47,7 +47,7 @@ TEST_F(ShiftSceneTest, FullMethodRecoversPlaneAndOccluder) {
 TEST_F(ShiftSceneTest, OcclusionHandlingHelpsNearTheOccluderEdge) {
   const DepthEvaluation with = EstimateAndScore(scene_->light_field, scene_->disparity, true, true);
   const DepthEvaluation without = EstimateAndScore(scene_->light_field, scene_->disparity, false, true);
-  // Measured near the square's edge: BadPix 0.07 13.3 % with, 23.9 % without; MSE x100 17 with, 93 without.
+  // Measured near the square's edge: BadPix 0.07 14.0 % with, 24.3 % without; MSE x100 19 with, 93 without.
   EXPECT_LT(with.near_discontinuities.badpix_007, 0.75 * without.near_discontinuities.badpix_007);
   EXPECT_LT(with.near_discontinuities.mse_x100, 0.5 * without.near_discontinuities.mse_x100);
 }
