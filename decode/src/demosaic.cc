@@ -53,60 +53,61 @@ std::array<int, 4> Tile(BayerPattern pattern) {
   return {0, 1, 1, 2};
 }
 
+// Mirrors an index about the first / last pixel (keeps the Bayer phase: reflecting by 2k is phase-preserving).
+inline int Reflect(int i, int n) { return i < 0 ? -i : (i >= n ? 2 * n - 2 - i : i); }
+
 // Malvar-He-Cutler: bilinear interpolation corrected by the Laplacian of the known channel (5x5 kernels).
+// Row pointers r[0..4] hold rows y-2..y+2; xm2..xp2 the columns x-2..x+2 (mirrored at the borders).
+inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp1, int xp2, int colour,
+                          int horizontal_colour, float* out) {
+  const float c = r[2][x];
+  const float axial = r[1][x] + r[3][x] + r[2][xm1] + r[2][xp1];
+  const float axial2 = r[0][x] + r[4][x] + r[2][xm2] + r[2][xp2];
+  const float diagonal = r[1][xm1] + r[1][xp1] + r[3][xm1] + r[3][xp1];
+  float red = 0.0f, green = 0.0f, blue = 0.0f;
+  if (colour == 1) {
+    green = c;
+    // Green pixel: one of red/blue lies left-right, the other up-down.
+    const float horizontal =
+        (5.0f * c + 4.0f * (r[2][xm1] + r[2][xp1]) - (r[2][xm2] + r[2][xp2]) - diagonal + 0.5f * (r[0][x] + r[4][x])) *
+        0.125f;
+    const float vertical =
+        (5.0f * c + 4.0f * (r[1][x] + r[3][x]) - (r[0][x] + r[4][x]) - diagonal + 0.5f * (r[2][xm2] + r[2][xp2])) *
+        0.125f;
+    red = horizontal_colour == 0 ? horizontal : vertical;
+    blue = horizontal_colour == 0 ? vertical : horizontal;
+  } else {
+    green = (4.0f * c + 2.0f * axial - axial2) * 0.125f;
+    const float opposite = (6.0f * c + 2.0f * diagonal - 1.5f * axial2) * 0.125f;
+    red = colour == 0 ? c : opposite;
+    blue = colour == 0 ? opposite : c;
+  }
+  out[0] = std::max(0.0f, red);
+  out[1] = std::max(0.0f, green);
+  out[2] = std::max(0.0f, blue);
+}
+
 cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern) {
-  cv::Mat padded;
-  // Mirroring about the edge pixel keeps the Bayer phase of every padded pixel.
-  cv::copyMakeBorder(bayer, padded, 2, 2, 2, 2, cv::BORDER_REFLECT_101);
   const std::array<int, 4> tile = Tile(pattern);
-  cv::Mat rgb(bayer.rows, bayer.cols, CV_32FC3);
-  const int stride = static_cast<int>(padded.step1());
+  const int rows = bayer.rows, cols = bayer.cols;
+  cv::Mat rgb(rows, cols, CV_32FC3);
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < bayer.rows; ++y) {
-    const float* row = padded.ptr<float>(y + 2) + 2;
+  for (int y = 0; y < rows; ++y) {
+    const float* r[5];
+    for (int d = -2; d <= 2; ++d) r[d + 2] = bayer.ptr<float>(Reflect(y + d, rows));
     float* out = rgb.ptr<float>(y);
-    for (int x = 0; x < bayer.cols; ++x) {
-      const float* p = row + x;
-      auto at = [p, stride](int dy, int dx) { return p[dy * stride + dx]; };
-      const float c = p[0];
-      const int colour = tile[static_cast<std::size_t>(2 * (y & 1) + (x & 1))];
-      float r = 0.0f, g = 0.0f, b = 0.0f;
-      const float axial = at(-1, 0) + at(1, 0) + at(0, -1) + at(0, 1);
-      const float axial2 = at(-2, 0) + at(2, 0) + at(0, -2) + at(0, 2);
-      const float diagonal = at(-1, -1) + at(-1, 1) + at(1, -1) + at(1, 1);
-      if (colour == 1) {
-        g = c;
-        // Green pixel: one of red/blue is left-right, the other up-down.
-        const float horizontal = (5.0f * c + 4.0f * (at(0, -1) + at(0, 1)) - (at(0, -2) + at(0, 2)) - diagonal +
-                                  0.5f * (at(-2, 0) + at(2, 0))) *
-                                 0.125f;
-        const float vertical = (5.0f * c + 4.0f * (at(-1, 0) + at(1, 0)) - (at(-2, 0) + at(2, 0)) - diagonal +
-                                0.5f * (at(0, -2) + at(0, 2))) *
-                               0.125f;
-        const int left_colour = tile[static_cast<std::size_t>(2 * (y & 1) + ((x + 1) & 1))];
-        if (left_colour == 0) {
-          r = horizontal;
-          b = vertical;
-        } else {
-          b = horizontal;
-          r = vertical;
-        }
-      } else {
-        const float green = (4.0f * c + 2.0f * axial - axial2) * 0.125f;
-        const float opposite = (6.0f * c + 2.0f * diagonal - 1.5f * axial2) * 0.125f;
-        g = green;
-        if (colour == 0) {
-          r = c;
-          b = opposite;
-        } else {
-          b = c;
-          r = opposite;
-        }
-      }
-      out[3 * x] = std::max(0.0f, r);
-      out[3 * x + 1] = std::max(0.0f, g);
-      out[3 * x + 2] = std::max(0.0f, b);
+    const int even = tile[static_cast<std::size_t>(2 * (y & 1))], odd = tile[static_cast<std::size_t>(2 * (y & 1) + 1)];
+    auto border = [&](int x) {
+      GradientPixel(r, x, Reflect(x - 2, cols), Reflect(x - 1, cols), Reflect(x + 1, cols), Reflect(x + 2, cols),
+                    (x & 1) ? odd : even, (x & 1) ? even : odd, out + 3 * x);
+    };
+    border(0);
+    border(1);
+    for (int x = 2; x + 2 < cols; x += 2) {
+      GradientPixel(r, x, x - 2, x - 1, x + 1, x + 2, even, odd, out + 3 * x);
+      if (x + 3 < cols) GradientPixel(r, x + 1, x - 1, x, x + 2, x + 3, odd, even, out + 3 * (x + 1));
     }
+    for (int x = std::max(2, cols - 3); x < cols; ++x) border(x);
   }
   return rgb;
 }
