@@ -95,8 +95,8 @@ void AddDepthCommand(CLI::App& parent) {
   command->add_flag("--wta", options->winner_take_all,
                     "Plain winner-take-all on the cost volume: no aggregation, no median (baseline); default: off");
   command->add_flag("--plane-fit", method.plane_fit,
-                    "Slanted-plane refinement of textureless pixels per superpixel (antinous: BadPix 0.07 6.1 -> "
-                    "5.1 %, but worse on thin occluders); default: off");
+                    "Slanted-plane refinement of textureless pixels per superpixel (antinous: BadPix 0.07 5.9 -> "
+                    "5.0 %, but worse on thin occluders); default: off");
   command
       ->add_option("--occlusion-radius", method.occlusion.radius,
                    "Pixels within this distance of a centre-view edge use the better half of the views; 0 = "
