@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include <spdlog/spdlog.h>
+
 #include "bench_case.h"
 
 namespace {
@@ -129,6 +131,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  spdlog::set_level(spdlog::level::warn);  // the stages' progress logs would break the table
   const std::string shared = lfsp::bench::SharedDataDir();
   std::printf("Machine: %u cores, %s. Median wall time over the runs shown; peak = max RSS of the case's process.\n\n",
               std::thread::hardware_concurrency(), CpuModel().c_str());
