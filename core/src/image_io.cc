@@ -3,8 +3,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -107,7 +107,8 @@ void CheckPngIsComplete(const std::filesystem::path& path) {
         problem = "truncated PNG: file ends at byte " + std::to_string(offset) + " before the IEND chunk";
         break;
       }
-      const long long length = (static_cast<long long>(header[0]) << 24) | (header[1] << 16) | (header[2] << 8) | header[3];
+      const long long length =
+          (static_cast<long long>(header[0]) << 24) | (header[1] << 16) | (header[2] << 8) | header[3];
       const std::string type(reinterpret_cast<const char*>(header + 4), 4);
       const long long next = offset + 8 + length + 4;  // header, data, CRC
       if (next > size) {

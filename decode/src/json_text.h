@@ -11,6 +11,6 @@ namespace lfsp::decode {
 // '}' (NULs, a checksum): everything after the last '}' is ignored. Throws
 // lfsp::Error naming `source` (and the parser's byte position) if the text is
 // not one JSON object.
-nlohmann::json ParseLytroJson(std::string_view text, const std::string &source);
+nlohmann::json ParseLytroJson(std::string_view text, const std::string& source);
 
-} // namespace lfsp::decode
+}  // namespace lfsp::decode
