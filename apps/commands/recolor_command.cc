@@ -13,7 +13,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
-#include "lfsp/edit/display.h"
+#include "lfsp/core/visualize.h"
 #include "lfsp/edit/labels_file.h"
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/selection.h"
@@ -123,11 +123,11 @@ void RunRecolor(const RecolorCommandOptions& options) {
 
   LightField& light_field = bundle.light_field;
   const ViewIndex centre = light_field.shape().Centre();
-  const cv::Mat before = edit::ToDisplay(light_field.View(centre), light_field.transfer);
+  const cv::Mat before = DisplayEncoded(light_field.View(centre), light_field.transfer);
   step = std::chrono::steady_clock::now();
   const edit::RecolorStats stats = edit::Recolor(light_field, *bundle.labels, selection, recolor);
   timings["recolor_s"] = SecondsSince(step);
-  const cv::Mat after = edit::ToDisplay(light_field.View(centre), light_field.transfer);
+  const cv::Mat after = DisplayEncoded(light_field.View(centre), light_field.transfer);
 
   step = std::chrono::steady_clock::now();
   SaveLightField(bundle, options.out, options.bit_depth);

@@ -19,7 +19,7 @@
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/refocus.h"
-#include "lfsp/edit/display.h"
+#include "lfsp/core/visualize.h"
 #include "lfsp/edit/image_measures.h"
 #include "lfsp/edit/refocus.h"
 #include "summary.h"
@@ -142,7 +142,7 @@ void RunRefocus(const RefocusCommandOptions& options) {
     for (std::size_t i = 0; i < disparities.size(); ++i) {
       const cv::Mat image = edit::RefocusImage(light_field, disparities[i], refocus_options);
       const std::string name = SliceName(i, disparities[i]);
-      WriteImage(edit::ToDisplay(image, light_field.transfer), output.temporary() / name, options.bit_depth);
+      WriteImage(DisplayEncoded(image, light_field.transfer), output.temporary() / name, options.bit_depth);
       slices.push_back({{"disparity", disparities[i]}, {"file", name}, {"sharpness", edit::GradientEnergy(image)}});
       spdlog::info("refocused at disparity {:+.3f} -> {}", disparities[i], name);
     }
@@ -156,8 +156,7 @@ void RunRefocus(const RefocusCommandOptions& options) {
     all_options.use_ray_weights = !options.no_weights;
     all_options.occlusion_aware = !options.no_occlusion;
     const cv::Mat image = edit::AllInFocus(light_field, *disparity_map, all_options);
-    WriteImage(edit::ToDisplay(image, light_field.transfer), output.temporary() / "all_in_focus.png",
-               options.bit_depth);
+    WriteImage(DisplayEncoded(image, light_field.transfer), output.temporary() / "all_in_focus.png", options.bit_depth);
     const cv::Mat centre = light_field.View(light_field.shape().Centre());
     summary["all_in_focus"] = {{"file", "all_in_focus.png"},
                                {"disparity", disparity_source},

@@ -10,28 +10,23 @@
 #include "lfsp/core/error.h"
 
 namespace lfsp {
-namespace {
-
-float SrgbEncode(float linear) {
-  const float x = std::clamp(linear, 0.0f, 1.0f);
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+cv::Mat DisplayEncoded(const cv::Mat& image, Transfer transfer) {
+  if (image.empty() || image.depth() != CV_32F) throw Error("preview: expected a non-empty float image");
+  cv::Mat out = image.clone();
+  float* values = out.ptr<float>(0);
+  const std::size_t count = out.total() * static_cast<std::size_t>(out.channels());
+  for (std::size_t i = 0; i < count; ++i) {
+    float value = std::clamp(values[i], 0.0f, 1.0f);
+    if (transfer == Transfer::kLinear)
+      value = value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
+    values[i] = value;
+  }
+  return out;
 }
 
-}  // namespace
-
 cv::Mat DisplayRgb8(const cv::Mat& view, Transfer transfer) {
-  cv::Mat rgb;
-  if (view.channels() == 1) {
-    cv::cvtColor(view, rgb, cv::COLOR_GRAY2RGB);
-  } else {
-    rgb = view;
-  }
-  cv::Mat encoded = rgb.clone();
-  if (transfer == Transfer::kLinear) {
-    encoded.forEach<cv::Vec3f>([](cv::Vec3f& pixel, const int*) {
-      for (int c = 0; c < 3; ++c) pixel[c] = SrgbEncode(pixel[c]);
-    });
-  }
+  cv::Mat encoded = DisplayEncoded(view, transfer);
+  if (encoded.channels() == 1) cv::cvtColor(encoded, encoded, cv::COLOR_GRAY2RGB);
   cv::Mat out;
   encoded.convertTo(out, CV_8U, 255.0);
   return out;

@@ -10,7 +10,11 @@ namespace lfsp {
 
 // Pictures for people: previews, reports and overlays. All return 8-bit RGB (CV_8UC3) unless said otherwise.
 
-// A view (CV_32FC1/3 in [0, 1]) for display: sRGB-encoded if the data are linear, clamped, 8-bit RGB.
+// A float image (any channels) ready for an 8/16-bit preview: a copy clamped to [0, 1], sRGB-encoded if the data
+// are linear (IEC 61966-2-1 curve).
+cv::Mat DisplayEncoded(const cv::Mat& image, Transfer transfer);
+
+// A view (CV_32FC1/3 in [0, 1]) for display: DisplayEncoded, then 8-bit RGB.
 cv::Mat DisplayRgb8(const cv::Mat& view, Transfer transfer);
 
 // Disparity colour-mapped with OpenCV's TURBO map over `range` (default: the map's finite min..max);
