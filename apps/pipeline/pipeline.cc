@@ -171,11 +171,15 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
 
   const segment::LfspResult segmentation = stages.Run("segment", [&] {
     segment::LfspResult lfsp = segment::SegmentLightField(light_field, depth_result.disparity, options.segment);
+    // The bundle is self-contained for `lfsp evaluate segmentation`. The light field and labels are moved in and
+    // back out rather than copied: each is a full 4D array.
     Bundle labelled;
-    labelled.light_field = light_field;  // the bundle is self-contained for `lfsp evaluate segmentation`
+    labelled.light_field = std::move(bundle.light_field);
     labelled.disparity = depth_result.disparity;
-    labelled.labels = lfsp.labels;
+    labelled.labels = std::move(lfsp.labels);
     WriteBundle(labelled, options.out / "segmentation.h5");
+    bundle.light_field = std::move(labelled.light_field);
+    lfsp.labels = std::move(*labelled.labels);
     return lfsp;
   });
 
