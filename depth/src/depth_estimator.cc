@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/depth/presmooth.h"
 
 namespace lfsp::depth {
 namespace {
@@ -45,22 +46,30 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (light_field.shape().channels != 3) {
     throw Error("depth: the light field must hold RGB views (got " + ToString(light_field.shape()) + ")");
   }
-  const cv::Mat centre = light_field.View(light_field.shape().Centre());
   StepTimer timer(result.timings);
+  // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
+  result.noise_sigma = EstimateNoiseSigma(light_field.View(light_field.shape().Centre()));
+  result.presmooth_sigma =
+      options.presmooth_sigma < 0.0f ? PresmoothSigmaForNoise(result.noise_sigma) : options.presmooth_sigma;
+  std::optional<LightField> smoothed;
+  if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
+  const LightField& views = smoothed ? *smoothed : light_field;
+  const cv::Mat centre = views.View(views.shape().Centre());
+  timer.Lap("presmooth");
 
   std::optional<OcclusionMap> occlusion;
   if (options.occlusion_handling) {
     OcclusionOptions occlusion_options = options.occlusion;
     if (occlusion_options.radius <= 0.0) {
       occlusion_options.radius =
-          AutomaticOcclusionRadius(light_field.shape().nu, light_field.shape().nv, result.range.min, result.range.max);
+          AutomaticOcclusionRadius(views.shape().nu, views.shape().nv, result.range.min, result.range.max);
     }
     result.occlusion_radius = occlusion_options.radius;
     occlusion = DetectOcclusionEdges(centre, occlusion_options);
     result.occlusion_candidates = occlusion->Candidates();
   }
   timer.Lap("occlusion_edges");
-  CostVolume cost = BuildCostVolume(light_field, disparities, options.cost, occlusion ? &*occlusion : nullptr);
+  CostVolume cost = BuildCostVolume(views, disparities, options.cost, occlusion ? &*occlusion : nullptr);
   timer.Lap("cost_volume");
   if (options.aggregation_radius > 0) {
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);

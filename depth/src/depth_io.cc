@@ -48,6 +48,7 @@ nlohmann::json ToJson(const DepthOptions& options) {
                        {"min_inlier_fraction", options.plane.min_inlier_fraction},
                        {"min_support", options.plane.min_support}};
   json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
+  json["presmooth_sigma"] = options.presmooth_sigma;
   return json;
 }
 

@@ -26,6 +26,9 @@ struct DepthOptions {
   SgmOptions sgm;
   bool plane_fit = false;  // slanted-plane refinement of textureless pixels (see plane_fit.h)
   PlaneFitOptions plane;
+  // Gaussian smoothing of every view before matching, pixels: < 0 = chosen from the centre view's estimated noise
+  // (none on clean views, up to 2.5 px in low light), 0 = off.
+  float presmooth_sigma = -1.0f;
   int median_radius = 3;       // weighted-median refinement window radius (0 = off)
   float median_sigma = 0.05f;  // colour scale of the weighted median's weights
 };
@@ -36,6 +39,8 @@ struct DepthResult {
   DisparityRange range;
   int occlusion_candidates = 0;   // pixels that used the edge-split angular patch
   double occlusion_radius = 0.0;  // the radius used (after the automatic choice)
+  double noise_sigma = 0.0;       // estimated noise of the centre view (Immerkaer), sample units
+  double presmooth_sigma = 0.0;   // the smoothing used, pixels (after the automatic choice)
   nlohmann::json timings;         // seconds per step
 };
 
