@@ -10,6 +10,7 @@
 #include "centre_slic.h"
 #include "lab_image.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/visualize.h"
 
 namespace lfsp::segment {
 namespace {
@@ -91,7 +92,7 @@ Labels LscPerView(const LightField& light_field, const BaselineParams& params) {
   CheckSize(params.size);
   return PerView(light_field, [&](ViewIndex view) {
     cv::Mat rgb8, lab8;
-    cv::Mat source = light_field.View(view);
+    cv::Mat source = DisplayEncoded(light_field.View(view), light_field.transfer);  // LSC expects sRGB
     if (source.channels() == 1) cv::cvtColor(source, source, cv::COLOR_GRAY2RGB);
     source.convertTo(rgb8, CV_8U, 255.0);
     cv::cvtColor(rgb8, lab8, cv::COLOR_RGB2Lab);

@@ -35,6 +35,12 @@ struct EvaluationOptions {
 nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
                            const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance);
 
+// The same for a method that segments each view on its own (label ids not shared between views): BR, UE, ASA, ELR
+// and compactness on the labels as they are; self-similarity and labels per pixel after FollowToCentre, so that they
+// measure where the superpixels lie rather than how the method happened to number them.
+nlohmann::json ScorePerViewLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
+                                  const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance);
+
 // The report of `lfsp evaluate segmentation`: {"lfsp": metrics, "baselines": {name: metrics}, "refocus": [...]}.
 nlohmann::json EvaluateSegmentation(const EvaluationInputs& inputs, const EvaluationOptions& options);
 
