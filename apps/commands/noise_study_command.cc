@@ -26,13 +26,20 @@ void AddNoiseStudyCommand(CLI::App& app) {
   command->add_option("--sigmas", options->sigmas, "Gaussian noise levels (standard deviation, samples in [0, 1])")
       ->capture_default_str()
       ->delimiter(',');
-  command->add_option("--camera", options->camera, "Camera of the low-light captures (mini-illum, mini-f01, ...)")
+  command
+      ->add_option("--camera", options->camera,
+                   "Camera of the low-light captures (illum, f01, or mini-illum / mini-f01 for a quick run)")
       ->capture_default_str();
   command
       ->add_option("--exposures", options->exposures,
                    "Low-light exposures, fractions of the white level; the first is the reference brightness")
       ->capture_default_str()
       ->delimiter(',');
+  command
+      ->add_option("--capture-views", options->capture_views,
+                   "Central N x N views kept of each decoded capture (the outer ones are vignetted); 0 = all")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--size", options->size, "Superpixel size on the ideal light field")->capture_default_str();
   command->add_option("--capture-size", options->capture_size, "Superpixel size on the decoded captures")
       ->capture_default_str();

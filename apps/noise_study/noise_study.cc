@@ -13,6 +13,8 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/view_crop.h"
+#include "lfsp/core/visualize.h"
 #include "lfsp/decode/capture_decoder.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/segment/baselines.h"
@@ -67,9 +69,14 @@ DisparityRange RangeOf(const DisparityMap& disparity) {
 // Depth from the noisy light field, then LFSP on it, and the per-view baselines, each scored against the truth.
 std::vector<std::pair<std::string, nlohmann::json>> SegmentAndScore(const Trial& trial, bool lsc) {
   std::vector<std::pair<std::string, nlohmann::json>> scores;
+  // Per-view baselines are followed across views before their self-similarity is measured, as in `lfsp evaluate`.
   auto score = [&](const std::string& method, const Labels& labels, double seconds) {
+    const bool per_view = method != "lfsp";
     nlohmann::json metrics =
-        segment::ScoreLabels(labels, &trial.gt_labels, &trial.gt_disparity, &trial.gt_view_disparity, 2);
+        per_view
+            ? segment::ScorePerViewLabels(labels, &trial.gt_labels, &trial.gt_disparity, &trial.gt_view_disparity, 2)
+            : segment::ScoreLabels(labels, &trial.gt_labels, &trial.gt_disparity, &trial.gt_view_disparity, 2);
+    metrics.erase("note");
     metrics["seconds"] = seconds;
     scores.emplace_back(method, std::move(metrics));
   };
@@ -108,34 +115,71 @@ LightField WithGaussianNoise(const LightField& clean, double sigma, std::uint64_
   return noisy;
 }
 
-// Renders the lenslet capture at `exposure`, decodes it, and scales it back to the reference brightness.
-Trial LowLightTrial(const NoiseStudyOptions& options, double exposure, const fs::path& work) {
+// Clamps to [0, 1] and sRGB-encodes a scene-linear light field in place, so that every method sees what a decode in
+// camera colour would give.
+void EncodeForDisplay(LightField& light_field) {
+  if (light_field.transfer != Transfer::kLinear) return;
+  const LightFieldShape& shape = light_field.shape();
+  for (int v = 0; v < shape.nv; ++v)
+    for (int u = 0; u < shape.nu; ++u) {
+      cv::Mat view = light_field.View(ViewIndex{u, v});
+      DisplayEncoded(view, Transfer::kLinear).copyTo(view);
+    }
+  light_field.transfer = Transfer::kSrgb;
+}
+
+// Renders the lenslet capture at `exposure`, decodes it, and scales it back to the reference brightness. The white
+// images are rendered with the first capture only (they do not depend on the exposure) and found in `whites`.
+Trial LowLightTrial(const NoiseStudyOptions& options, double exposure, const fs::path& work, const fs::path& whites) {
   simulate::SimulateOptions simulate_options;
   simulate_options.scene = options.scene;
   simulate_options.camera = options.camera;
   simulate_options.seed = options.seed;
   simulate_options.capture.exposure = exposure;
+  simulate_options.white_images = !fs::exists(whites);
   const fs::path folder = work / ("exposure_" + std::to_string(exposure));
   simulate::Simulate(simulate_options, folder);
+  if (simulate_options.white_images) fs::rename(folder / "whites", whites);
   fs::path capture;
   for (const auto& entry : fs::directory_iterator(folder))
     if (entry.path().stem() == "capture") capture = entry.path();
-  decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(capture, {});
-  Trial trial;
-  trial.light_field = std::move(decoded.light_field);
+  // The gain back to the reference brightness is applied to scene-linear values: applied after the sRGB curve it
+  // would blow most of a dim capture out to white instead of showing its noise.
+  decode::CaptureDecodeOptions decode_options;
+  decode_options.white_images = whites;
+  decode_options.decode.colour = decode::ColourMode::kLinear;
+  decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(capture, decode_options);
   const float gain = static_cast<float>(options.exposures.front() / exposure);
-  for (std::size_t i = 0; i < trial.light_field.size(); ++i)
-    trial.light_field.data()[i] = std::min(1.0f, trial.light_field.data()[i] * gain);
+  for (std::size_t i = 0; i < decoded.light_field.size(); ++i) decoded.light_field.data()[i] *= gain;
+  EncodeForDisplay(decoded.light_field);
+
   Bundle truth = ReadBundle(folder / "ground_truth" / "decoded.h5");
   if (!truth.labels || !truth.disparity) ThrowFileError(folder.string(), "simulated ground truth lacks labels");
-  if (!(truth.light_field.shape() == trial.light_field.shape()))
-    throw Error("decoded capture " + ToString(trial.light_field.shape()) + " does not match its ground truth " +
+  if (!(truth.light_field.shape() == decoded.light_field.shape()))
+    throw Error("decoded capture " + ToString(decoded.light_field.shape()) + " does not match its ground truth " +
                 ToString(truth.light_field.shape()));
-  trial.gt_labels = std::move(*truth.labels);
+  fs::remove_all(folder);
+  Trial trial;
+  const int views = decoded.light_field.shape().nu;
+  const int keep = options.capture_views > 0 ? std::min(options.capture_views, views) : views;
+  trial.light_field = keep == views ? std::move(decoded.light_field) : CentralViews(decoded.light_field, keep);
+  trial.gt_labels = keep == views ? std::move(*truth.labels) : CentralViews(*truth.labels, keep);
   trial.gt_disparity = std::move(*truth.disparity);
   trial.gt_view_disparity = segment::PropagateDisparity(trial.gt_disparity, trial.light_field.shape());
   trial.size = options.capture_size;
   return trial;
+}
+
+// Mean sample value and the share of samples at 1 (clipped): shows that every level has the reference brightness.
+nlohmann::ordered_json Brightness(const LightField& light_field) {
+  double sum = 0.0;
+  std::size_t clipped = 0;
+  for (std::size_t i = 0; i < light_field.size(); ++i) {
+    sum += light_field.data()[i];
+    clipped += light_field.data()[i] >= 1.0f ? 1 : 0;
+  }
+  const double count = static_cast<double>(std::max<std::size_t>(1, light_field.size()));
+  return {{"mean", sum / count}, {"clipped_fraction", static_cast<double>(clipped) / count}};
 }
 
 std::string CsvValue(const nlohmann::json& value) {
@@ -252,10 +296,15 @@ NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
   // Low light at the sensor, through decode.
   const simulate::CameraModel camera = simulate::CameraPreset(options.camera);
   const fs::path work = options.out / "captures";
+  nlohmann::ordered_json brightness = nlohmann::ordered_json::array();
   for (double exposure : options.exposures) {
     const double photons = exposure * camera.full_well;
     spdlog::info("low light: exposure {} ({:.0f} photons at white)", exposure, photons);
-    const Trial trial = LowLightTrial(options, exposure, work);
+    const Trial trial = LowLightTrial(options, exposure, work, work / "whites");
+    nlohmann::ordered_json level = Brightness(trial.light_field);
+    level["exposure"] = exposure;
+    level["light_field"] = ToString(trial.light_field.shape());
+    brightness.push_back(level);
     for (auto& [method, metrics] : SegmentAndScore(trial, options.lsc)) {
       metrics["photons_at_white"] = photons;
       rows.push_back({"lowlight", exposure, 1.0 / std::sqrt(photons), method, metrics});
@@ -277,6 +326,8 @@ NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
   summary["camera"] = options.camera;
   summary["sigmas"] = options.sigmas;
   summary["exposures"] = options.exposures;
+  summary["capture_views"] = options.capture_views;
+  summary["lowlight_brightness"] = brightness;
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   for (const Row& row : rows)
     results.push_back({{"noise", row.noise}, {"level", row.level}, {"method", row.method}, {"metrics", row.metrics}});
