@@ -101,6 +101,8 @@ void RunSegment(const SegmentCommandOptions& options) {
   summary["parameters"] = segment::ToJson(options.params);
   summary["superpixels"] = result.superpixels;
   summary["effective_label_ratio"] = segment::EffectiveLabelRatio(result.labels);
+  summary["noise_sigma"] = result.noise_sigma;
+  summary["presmooth"] = result.presmooth;
   summary["iterations"] = result.iterations_run;
   summary["label_moves"] = result.label_moves;
   summary["moves_per_iteration"] = result.moves_per_iteration;
@@ -164,6 +166,9 @@ void AddSegmentCommand(CLI::App& parent) {
                "Extra cost when an occlusion's claimed front is behind (px^2)");
   AddParameter(command, "--convergence", p.convergence,
                "Stop when fewer than this fraction of rays changed label in an iteration");
+  AddParameter(command, "--presmooth", p.presmooth,
+               "Gaussian smoothing (px) of the colours compared, against noise; -1 = from the estimated noise "
+               "(none on clean views, up to 1.5 px), 0 = off");
   AddParameter(command, "--threads", p.threads, "OpenMP threads (0 = all)");
   command->callback([options] {
     segment::Validate(options->params);

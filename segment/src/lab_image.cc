@@ -23,6 +23,15 @@ cv::Mat LabView(std::vector<float>& lab, const LightFieldShape& shape, ViewIndex
   return cv::Mat(shape.height, shape.width, CV_32FC3, lab.data() + offset);
 }
 
+void SmoothLabViews(std::vector<float>& lab, const LightFieldShape& shape, double sigma) {
+  const int views = static_cast<int>(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    cv::Mat view = LabView(lab, shape, ViewFromCameraNumber(cam, shape.nu));
+    cv::GaussianBlur(view, view, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT);
+  }
+}
+
 std::vector<float> LabOfLightField(const LightField& light_field) {
   const LightFieldShape& shape = light_field.shape();
   if (shape.channels != 3 && shape.channels != 1) {

@@ -11,6 +11,9 @@ namespace lfsp::segment {
 // Linear light fields are sRGB-encoded first, so distances are perceptual for both transfers.
 std::vector<float> LabOfLightField(const LightField& light_field);
 
+// Gaussian-smooths every view of such a buffer in place (sigma in pixels), in parallel over views.
+void SmoothLabViews(std::vector<float>& lab, const LightFieldShape& shape, double sigma);
+
 // One view of such a buffer as a zero-copy CV_32FC3 matrix.
 cv::Mat LabView(std::vector<float>& lab, const LightFieldShape& shape, ViewIndex view);
 

@@ -12,6 +12,7 @@
 #include "connectivity.h"
 #include "lab_image.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/noise.h"
 #include "planes.h"
 #include "refine.h"
 #include "warp.h"
@@ -94,6 +95,9 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
 
   auto step = std::chrono::steady_clock::now();
   std::vector<float> lab = LabOfLightField(light_field);
+  result.noise_sigma = EstimateNoiseSigma(light_field.View(shape.Centre()));
+  result.presmooth = params.presmooth < 0.0 ? PresmoothForNoise(result.noise_sigma) : params.presmooth;
+  if (result.presmooth > 0.0) SmoothLabViews(lab, shape, result.presmooth);
   result.timings.lab_seconds = SecondsSince(step);
 
   step = std::chrono::steady_clock::now();

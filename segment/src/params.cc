@@ -40,6 +40,7 @@ nlohmann::json ToJson(const LfspParams& p) {
           {"occlusion_penalty", p.occlusion_penalty},
           {"impossible_penalty", p.impossible_penalty},
           {"convergence", p.convergence},
+          {"presmooth", p.presmooth},
           {"threads", p.threads}};
 }
 
@@ -63,6 +64,7 @@ LfspParams ParamsFromJson(const nlohmann::json& json, const std::string& where) 
   ReadField(json, "occlusion_penalty", p.occlusion_penalty, where);
   ReadField(json, "impossible_penalty", p.impossible_penalty, where);
   ReadField(json, "convergence", p.convergence, where);
+  ReadField(json, "presmooth", p.presmooth, where);
   ReadField(json, "threads", p.threads, where);
   Validate(p);
   return p;
@@ -87,7 +89,14 @@ void Validate(const LfspParams& p) {
   Require(finite_non_negative(p.occlusion_penalty), "occlusion_penalty", "a finite value >= 0");
   Require(finite_non_negative(p.impossible_penalty), "impossible_penalty", "a finite value >= 0");
   Require(finite_non_negative(p.convergence), "convergence", "a finite value >= 0");
+  Require(std::isfinite(p.presmooth) && p.presmooth <= 10.0, "presmooth", "a value <= 10 (negative = automatic)");
   Require(p.threads >= 0 && p.threads <= 1024, "threads", "an integer in 0..1024");
+}
+
+double PresmoothForNoise(double noise_sigma) {
+  constexpr double kNoiseFloor = 0.004;
+  if (!(noise_sigma > kNoiseFloor)) return 0.0;
+  return std::min(1.5, 40.0 * (noise_sigma - kNoiseFloor));
 }
 
 }  // namespace lfsp::segment

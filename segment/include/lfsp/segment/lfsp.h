@@ -26,6 +26,8 @@ struct LfspResult {
   long long label_moves = 0;  // rays that changed label during the BCD
   std::vector<long long> moves_per_iteration;
   std::vector<double> sweep_seconds;  // wall time of each label-move sweep of the BCD
+  double noise_sigma = 0.0;           // estimated noise of the centre view (EstimateNoiseSigma)
+  double presmooth = 0.0;             // colour smoothing used, px (after the automatic choice)
   LfspTimings timings;
 };
 
