@@ -36,10 +36,13 @@ nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOpti
     const LightField refocused = RefocusLightField(*inputs.light_field, level);
     const LfspResult result =
         SegmentLightField(refocused, RefocusDisparity(*inputs.segmentation_disparity, level), options.lfsp);
-    const std::vector<DisparityMap> views = PropagateDisparity(RefocusDisparity(reference, level), refocused.shape());
+    const DisparityMap refocused_reference = RefocusDisparity(reference, level);
+    const std::vector<DisparityMap> views = PropagateDisparity(refocused_reference, refocused.shape());
+    const Labels carried = CarryCentreLabels(result.labels, refocused_reference, views);
     sweep.push_back({{"level", level},
                      {"ss", SelfSimilarity(result.labels, views)},
                      {"ss_in_frame", SelfSimilarity(result.labels, views, true)},
+                     {"ss_reference", SelfSimilarity(carried, views)},
                      {"elr", EffectiveLabelRatio(result.labels)},
                      {"seconds", result.timings.total_seconds}});
   }
@@ -64,6 +67,9 @@ nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const 
   if (gt_disparity != nullptr && gt_view_disparity != nullptr) {
     m["self_similarity"] = SelfSimilarity(labels, *gt_view_disparity);
     m["self_similarity_in_frame"] = SelfSimilarity(labels, *gt_view_disparity, true);
+    const Labels reference = CarryCentreLabels(labels, *gt_disparity, *gt_view_disparity);
+    m["self_similarity_reference"] = SelfSimilarity(reference, *gt_view_disparity);
+    m["self_similarity_reference_in_frame"] = SelfSimilarity(reference, *gt_view_disparity, true);
     m["labels_per_pixel"] = LabelsPerPixel(labels, *gt_disparity, *gt_view_disparity);
   }
   return m;
@@ -76,7 +82,8 @@ nlohmann::json ScorePerViewLabels(const Labels& labels, const Labels* gt_labels,
     const Labels followed = FollowToCentre(labels, *gt_view_disparity);
     const nlohmann::json consistency =
         ScoreLabels(followed, nullptr, gt_disparity, gt_view_disparity, boundary_tolerance);
-    for (const char* key : {"self_similarity", "self_similarity_in_frame", "labels_per_pixel"}) {
+    for (const char* key : {"self_similarity", "self_similarity_in_frame", "self_similarity_reference",
+                            "self_similarity_reference_in_frame", "labels_per_pixel"}) {
       metrics[key] = consistency[key];
     }
   }

@@ -50,6 +50,15 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
 double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
                       bool in_frame_only = false);
 
+// The reference for self-similarity: the centre view's labels carried to every view by the ground truth. A ray
+// whose scene point the centre view sees (its disparity agrees, within 0.25 px, with the centre pixel it projects
+// to) takes that pixel's label; rays the centre view does not see (uncovered behind an occluder, or outside its
+// frame) are filled from the background side of their epipolar line, as LFSP's projection fills them. It is a
+// perfectly view-consistent segmentation with the same centre superpixels, so its self-similarity is what
+// occlusions and the image border cost on their own under Eq. 8.
+Labels CarryCentreLabels(const Labels& labels, const DisparityMap& centre_disparity,
+                         const std::vector<DisparityMap>& view_disparity);
+
 // For segmentations made view by view (no label links views): renames every superpixel of every side view to the
 // centre-view label it overlaps most once its pixels are projected to the centre view with `view_disparity` (a
 // superpixel with no overlap keeps a fresh label). This follows per-view superpixels across views as generously as
