@@ -266,6 +266,10 @@ nlohmann::ordered_json Degradation(const std::vector<Row>& rows) {
 }  // namespace
 
 NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
+  if (options.capture_views < 0 || (options.capture_views != 0 && options.capture_views % 2 == 0)) {
+    throw Error("noise study: --capture-views must be 0 (all) or odd, so the centre view stays the centre; got " +
+                std::to_string(options.capture_views));
+  }
   const auto start = std::chrono::steady_clock::now();
   fs::create_directories(options.out);
   std::vector<Row> rows;

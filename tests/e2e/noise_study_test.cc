@@ -85,5 +85,12 @@ TEST(NoiseStudy, BadLevelListIsBadInput) {
   EXPECT_EQ(result.exit_status, 2);
 }
 
+TEST(NoiseStudy, EvenCentralViewCountIsRefusedBeforeAnyWork) {
+  TempDir temp;
+  const auto result = RunLfsp({"noise-study", "--out", (temp.path() / "s").string(), "--capture-views", "8"});
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_NE(result.err.find("--capture-views"), std::string::npos) << result.err;
+}
+
 }  // namespace
 }  // namespace lfsp
