@@ -1,5 +1,5 @@
-// The noise estimate that drives the depth estimator's pre-smoothing, and what the smoothing buys on a noisy light
-// field with known disparity.
+// The depth estimator's pre-smoothing: how much it chooses for a noise level, and what it buys on a noisy light field
+// with known disparity. (The noise estimate itself is tested in tests/core/noise_test.cc.)
 
 #include "lfsp/depth/presmooth.h"
 
@@ -16,35 +16,6 @@
 
 namespace lfsp::depth {
 namespace {
-
-// A smooth random texture (blurred uniform noise, stretched to a contrast of about 0.5) in [0, 1].
-cv::Mat Texture(int size, std::uint64_t seed) {
-  cv::Mat texture(size, size, CV_32FC3);
-  cv::RNG random(seed);
-  random.fill(texture, cv::RNG::UNIFORM, 0.0, 1.0);
-  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
-  cv::normalize(texture, texture, 0.25, 0.75, cv::NORM_MINMAX);
-  return texture;
-}
-
-cv::Mat WithNoise(const cv::Mat& image, double sigma, std::uint64_t seed) {
-  cv::Mat noise(image.size(), image.type());
-  cv::RNG random(seed);
-  random.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
-  return image + noise;
-}
-
-TEST(NoiseEstimate, ReadsTheAddedNoiseOnATexturedImage) {
-  const cv::Mat clean = Texture(256, 1);
-  EXPECT_LT(EstimateNoiseSigma(clean), kNoiseFloor) << "a clean texture is not noise";
-  for (double sigma : {0.01, 0.03, 0.06}) {
-    // Grey noise: the estimate is made on the grey version, where independent RGB noise would shrink.
-    cv::Mat grey;
-    cv::cvtColor(clean, grey, cv::COLOR_RGB2GRAY);
-    const double estimate = EstimateNoiseSigma(WithNoise(grey, sigma, 7));
-    EXPECT_NEAR(estimate, sigma, 0.15 * sigma) << "sigma " << sigma;
-  }
-}
 
 TEST(NoiseEstimate, SmoothingGrowsWithNoiseAndIsCapped) {
   EXPECT_EQ(PresmoothSigmaForNoise(0.002), 0.0);
@@ -84,7 +55,9 @@ TEST(Presmooth, AutomaticSmoothingRescuesDepthOnANoisyLightField) {
   EXPECT_GT(automatic.presmooth_sigma, 0.5);
   EXPECT_LT(error_automatic, 0.7 * error_unsmoothed);
 
-  const DepthResult clean = EstimateDepth(scene.light_field, DepthOptions{.range = DisparityRange{-2.0f, 2.0f}});
+  DepthOptions defaults;
+  defaults.range = DisparityRange{-2.0f, 2.0f};
+  const DepthResult clean = EstimateDepth(scene.light_field, defaults);
   EXPECT_EQ(clean.presmooth_sigma, 0.0) << "noise estimate on the clean views: " << clean.noise_sigma;
 }
 
