@@ -98,7 +98,7 @@ cv::Mat LevelAndDevignette(const RawImage& raw, const PhaseLevels& levels, const
           ++found;
         }
       }
-      out[x] = std::max(0.0f, (value - levels.black[phase]) * levels.scale[phase]) * inverse[x];
+      out[x] = (value - levels.black[phase]) * levels.scale[phase] * inverse[x];
     }
   }
   hot_pixels = found;

@@ -82,9 +82,9 @@ inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp
     red = colour == 0 ? c : opposite;
     blue = colour == 0 ? opposite : c;
   }
-  out[0] = std::max(0.0f, red);
-  out[1] = std::max(0.0f, green);
-  out[2] = std::max(0.0f, blue);
+  out[0] = red;
+  out[1] = green;
+  out[2] = blue;
 }
 
 cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern) {
