@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stats.h"
 #include "lfsp/core/view_crop.h"
 #include "lfsp/core/visualize.h"
 #include "lfsp/decode/capture_decoder.h"
@@ -172,14 +174,11 @@ Trial LowLightTrial(const NoiseStudyOptions& options, double exposure, const fs:
 
 // Mean sample value and the share of samples at 1 (clipped): shows that every level has the reference brightness.
 nlohmann::ordered_json Brightness(const LightField& light_field) {
-  double sum = 0.0;
-  std::size_t clipped = 0;
-  for (std::size_t i = 0; i < light_field.size(); ++i) {
-    sum += light_field.data()[i];
-    clipped += light_field.data()[i] >= 1.0f ? 1 : 0;
-  }
-  const double count = static_cast<double>(std::max<std::size_t>(1, light_field.size()));
-  return {{"mean", sum / count}, {"clipped_fraction", static_cast<double>(clipped) / count}};
+  const auto clipped = std::count_if(light_field.data(), light_field.data() + light_field.size(),
+                                     [](float value) { return value >= 1.0f; });
+  return {{"mean", ComputeStats(light_field.data(), light_field.size()).mean},
+          {"clipped_fraction",
+           static_cast<double>(clipped) / static_cast<double>(std::max<std::size_t>(1, light_field.size()))}};
 }
 
 std::string CsvValue(const nlohmann::json& value) {

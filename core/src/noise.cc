@@ -30,4 +30,9 @@ double EstimateNoiseSigma(const cv::Mat& image) {
   return static_cast<double>(*middle) / (0.6745 * 6.0);
 }
 
+double SmoothingForNoise(double noise_sigma, double pixels_per_noise, double max_pixels) {
+  if (!(noise_sigma > kCleanNoiseLevel)) return 0.0;
+  return std::min(max_pixels, pixels_per_noise * (noise_sigma - kCleanNoiseLevel));
+}
+
 }  // namespace lfsp

@@ -1,19 +1,16 @@
 #include "lfsp/depth/presmooth.h"
 
-#include <algorithm>
-#include <cmath>
 #include <opencv2/imgproc.hpp>
-#include <vector>
 
 namespace lfsp::depth {
 
-double PresmoothSigmaForNoise(double noise_sigma) {
-  if (!(noise_sigma > kNoiseFloor)) return 0.0;
-  return std::min(2.5, 100.0 * (noise_sigma - kNoiseFloor));
-}
+double PresmoothSigmaForNoise(double noise_sigma) { return SmoothingForNoise(noise_sigma, 100.0, 2.5); }
 
 LightField Presmoothed(const LightField& light_field, double sigma) {
-  LightField out = light_field;
+  // Written view by view straight from the input: no copy of the samples first (the cost volume reads no weights).
+  LightField out(light_field.shape());
+  out.transfer = light_field.transfer;
+  out.metadata = light_field.metadata;
   const LightFieldShape& shape = out.shape();
   const int views = static_cast<int>(shape.Views());
 #pragma omp parallel for schedule(dynamic)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/noise.h"
 
 namespace lfsp::segment {
 namespace {
@@ -93,10 +94,6 @@ void Validate(const LfspParams& p) {
   Require(p.threads >= 0 && p.threads <= 1024, "threads", "an integer in 0..1024");
 }
 
-double PresmoothForNoise(double noise_sigma) {
-  constexpr double kNoiseFloor = 0.004;
-  if (!(noise_sigma > kNoiseFloor)) return 0.0;
-  return std::min(1.5, 40.0 * (noise_sigma - kNoiseFloor));
-}
+double PresmoothForNoise(double noise_sigma) { return SmoothingForNoise(noise_sigma, 40.0, 1.5); }
 
 }  // namespace lfsp::segment

@@ -19,7 +19,7 @@ namespace {
 
 TEST(NoiseEstimate, SmoothingGrowsWithNoiseAndIsCapped) {
   EXPECT_EQ(PresmoothSigmaForNoise(0.002), 0.0);
-  EXPECT_EQ(PresmoothSigmaForNoise(kNoiseFloor), 0.0);
+  EXPECT_EQ(PresmoothSigmaForNoise(kCleanNoiseLevel), 0.0);
   EXPECT_NEAR(PresmoothSigmaForNoise(0.014), 1.0, 1e-9);
   EXPECT_LT(PresmoothSigmaForNoise(0.01), PresmoothSigmaForNoise(0.02));
   EXPECT_EQ(PresmoothSigmaForNoise(0.5), 2.5);

@@ -11,4 +11,11 @@ namespace lfsp {
 // segmentation use it to decide how much to smooth noisy views.
 double EstimateNoiseSigma(const cv::Mat& image);
 
+// Below this estimated noise a view counts as clean: a rendered or well-exposed view reads 0.002-0.003.
+constexpr double kCleanNoiseLevel = 0.004;
+
+// How much to smooth (Gaussian sigma, pixels) against a noise level: none up to kCleanNoiseLevel, then
+// `pixels_per_noise` pixels per unit of noise above it, at most `max_pixels`. Each stage picks its own slope.
+double SmoothingForNoise(double noise_sigma, double pixels_per_noise, double max_pixels);
+
 }  // namespace lfsp

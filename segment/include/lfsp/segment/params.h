@@ -42,8 +42,8 @@ struct LfspParams {
   int threads = 0;  // OpenMP threads; 0 = default
 };
 
-// The colour smoothing chosen for a noise level (EstimateNoiseSigma): none up to 0.004, then 0.4 px per 0.01 of
-// noise, at most 1.5 px. On planes (9x9 views of 256x256, true disparity, Gaussian noise 0.08 per channel, which
+// The colour smoothing chosen for a noise level (EstimateNoiseSigma): none up to kCleanNoiseLevel, then 0.4 px per 0.01
+// of noise, at most 1.5 px. On planes (9x9 views of 256x256, true disparity, Gaussian noise 0.08 per channel, which
 // reads 0.054, so 1.5 px): SS 1.83 -> 0.95 px, UE 0.126 -> 0.016, BR 0.932 unchanged.
 double PresmoothForNoise(double noise_sigma);
 
