@@ -23,6 +23,7 @@
 #include "lfsp/segment/evaluate.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
+#include "lfsp/simulate/image_noise.h"
 #include "lfsp/simulate/lenslet_camera.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
@@ -105,18 +106,6 @@ std::vector<std::pair<std::string, nlohmann::json>> SegmentAndScore(const Trial&
   return scores;
 }
 
-LightField WithGaussianNoise(const LightField& clean, double sigma, std::uint64_t seed) {
-  LightField noisy = clean;
-  if (sigma <= 0.0) return noisy;
-  cv::RNG random(seed);
-  cv::Mat all(1, static_cast<int>(noisy.size()), CV_32FC1, noisy.data());
-  cv::Mat noise(all.size(), CV_32FC1);
-  random.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
-  all += noise;
-  cv::min(cv::max(all, 0.0), 1.0, all);
-  return noisy;
-}
-
 // Clamps to [0, 1] and sRGB-encodes a scene-linear light field in place, so that every method sees what a decode in
 // camera colour would give.
 void EncodeForDisplay(LightField& light_field) {
@@ -145,27 +134,27 @@ Trial LowLightTrial(const NoiseStudyOptions& options, double exposure, const fs:
   fs::path capture;
   for (const auto& entry : fs::directory_iterator(folder))
     if (entry.path().stem() == "capture") capture = entry.path();
-  // The gain back to the reference brightness is applied to scene-linear values: applied after the sRGB curve it
-  // would blow most of a dim capture out to white instead of showing its noise.
   decode::CaptureDecodeOptions decode_options;
   decode_options.white_images = whites;
   decode_options.decode.colour = decode::ColourMode::kLinear;
   decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(capture, decode_options);
-  const float gain = static_cast<float>(options.exposures.front() / exposure);
-  for (std::size_t i = 0; i < decoded.light_field.size(); ++i) decoded.light_field.data()[i] *= gain;
-  EncodeForDisplay(decoded.light_field);
-
   Bundle truth = ReadBundle(folder / "ground_truth" / "decoded.h5");
   if (!truth.labels || !truth.disparity) ThrowFileError(folder.string(), "simulated ground truth lacks labels");
   if (!(truth.light_field.shape() == decoded.light_field.shape()))
     throw Error("decoded capture " + ToString(decoded.light_field.shape()) + " does not match its ground truth " +
                 ToString(truth.light_field.shape()));
   fs::remove_all(folder);
+  // The outer views are dropped first, so the gain and the encoding touch only the views that are kept.
   Trial trial;
   const int views = decoded.light_field.shape().nu;
   const int keep = options.capture_views > 0 ? std::min(options.capture_views, views) : views;
   trial.light_field = keep == views ? std::move(decoded.light_field) : CentralViews(decoded.light_field, keep);
   trial.gt_labels = keep == views ? std::move(*truth.labels) : CentralViews(*truth.labels, keep);
+  // The gain back to the reference brightness is applied to scene-linear values: applied after the sRGB curve it
+  // would blow most of a dim capture out to white instead of showing its noise.
+  const float gain = static_cast<float>(options.exposures.front() / exposure);
+  for (std::size_t i = 0; i < trial.light_field.size(); ++i) trial.light_field.data()[i] *= gain;
+  EncodeForDisplay(trial.light_field);
   trial.gt_disparity = std::move(*truth.disparity);
   trial.gt_view_disparity = segment::PropagateDisparity(trial.gt_disparity, trial.light_field.shape());
   trial.size = options.capture_size;
@@ -290,7 +279,8 @@ NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
     const double sigma = options.sigmas[i];
     spdlog::info("image noise sigma {}", sigma);
     Trial trial = clean;
-    trial.light_field = WithGaussianNoise(ideal.light_field, sigma, options.seed + i);
+    trial.light_field = ideal.light_field;
+    simulate::AddGaussianNoise(trial.light_field, sigma, options.seed + i);
     for (auto& [method, metrics] : SegmentAndScore(trial, options.lsc))
       rows.push_back({"image", sigma, sigma, method, metrics});
     progress.Tick();

@@ -6,11 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+#include <cstdio>
 
 #include "lfsp/depth/depth_estimator.h"
-#include "lfsp/depth/metrics.h"
+#include "lfsp/simulate/image_noise.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
 
@@ -38,10 +37,7 @@ TEST(Presmooth, AutomaticSmoothingRescuesDepthOnANoisyLightField) {
   render.supersampling = 2;
   const simulate::RenderedLightField scene = simulate::RenderLightField(simulate::BuiltinScene("planes"), render);
   LightField noisy = scene.light_field;
-  cv::Mat all(1, static_cast<int>(noisy.size()), CV_32FC1, noisy.data());
-  cv::Mat noise(all.size(), CV_32FC1);
-  cv::RNG(3).fill(noise, cv::RNG::NORMAL, 0.0, 0.06);
-  all += noise;
+  simulate::AddGaussianNoise(noisy, 0.06, 3);
 
   DepthOptions options;
   options.range = DisparityRange{-2.0f, 2.0f};

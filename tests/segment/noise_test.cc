@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <opencv2/core.hpp>
 
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
+#include "lfsp/simulate/image_noise.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
 
@@ -20,11 +20,7 @@ TEST(LfspUnderNoise, AutomaticColourSmoothingKeepsLabelsConsistent) {
   render.supersampling = 2;
   const simulate::RenderedLightField scene = simulate::RenderLightField(simulate::BuiltinScene("planes"), render);
   LightField noisy = scene.light_field;
-  cv::Mat all(1, static_cast<int>(noisy.size()), CV_32FC1, noisy.data());
-  cv::Mat noise(all.size(), CV_32FC1);
-  cv::RNG(11).fill(noise, cv::RNG::NORMAL, 0.0, 0.08);
-  all += noise;
-  cv::min(cv::max(all, 0.0), 1.0, all);
+  simulate::AddGaussianNoise(noisy, 0.08, 11);
 
   const LfspResult clean = SegmentLightField(scene.light_field, scene.disparity, {});
   EXPECT_EQ(clean.presmooth, 0.0) << "clean views read noise " << clean.noise_sigma;
