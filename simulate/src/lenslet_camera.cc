@@ -26,6 +26,8 @@ CameraModel IllumOptics() {
   c.white = 1023;
   c.response_r = 0.7571942210197449;
   c.response_b = 0.7217861413955688;
+  c.ccm = {2.244826316833496,    -0.9087038040161133, -0.33612245321273804, -0.5600823760032654, 1.7229819297790527,
+           -0.16289949417114258, -0.5868203043937683, -1.3248286247253418,  2.911648750305176};
   c.iso = 122;
   c.lens_pitch = 2e-5;
   c.rotation = -0.0008558133849874139;
@@ -69,6 +71,8 @@ CameraModel F01() {
   // Inverse of the real white-balance gains (r 1, gr 1.1171875, b 1.72265625) relative to green.
   c.response_r = 1.1171875;
   c.response_b = 1.1171875 / 1.72265625;
+  c.ccm = {3.1115827560424805,   -1.9393929243087769,  -0.172189861536026,  -0.3629055917263031, 1.6408803462982178,
+           -0.27797481417655945, 0.078967012465000153, -1.1558042764663696, 2.0768373012542725};
   c.iso = 200;
   c.lens_pitch = 1.389859962463379e-05;
   c.rotation = 0.0019290975760668516;
@@ -102,6 +106,17 @@ double CameraModel::DiscRadius(const LensSetting& setting) const {
   // The micro-image is the image of the main-lens exit pupil: it fills the lens when the f-numbers match, less
   // when the main lens is stopped down; a small gap separates neighbouring discs.
   return 0.5 * SpacingPixels(setting) * std::min(1.0, mla_f_number / f_number) * 0.96;
+}
+
+std::array<double, 9> CameraModel::SceneToSensor() const {
+  const std::array<double, 9>& m = ccm;
+  const double det =
+      m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+  if (!(std::abs(det) > 1e-9)) throw Error("camera '" + name + "': colour matrix is singular");
+  const double inv = 1.0 / det;
+  return {inv * (m[4] * m[8] - m[5] * m[7]), inv * (m[2] * m[7] - m[1] * m[8]), inv * (m[1] * m[5] - m[2] * m[4]),
+          inv * (m[5] * m[6] - m[3] * m[8]), inv * (m[0] * m[8] - m[2] * m[6]), inv * (m[2] * m[3] - m[0] * m[5]),
+          inv * (m[3] * m[7] - m[4] * m[6]), inv * (m[1] * m[6] - m[0] * m[7]), inv * (m[0] * m[4] - m[1] * m[3])};
 }
 
 CameraModel CameraPreset(const std::string& name) {

@@ -24,13 +24,7 @@ json WhiteBalanceGain(const CameraModel& camera) {
   return Bayer4(1.0 / camera.response_r, 1.0, 1.0, 1.0 / camera.response_b);
 }
 
-// Real colour matrices (Illum LFR image.color.ccm and perCcm; F01 ccmRgbToSrgbArray; white TXT ccmRgbToSrgbArray).
-const std::vector<double> kIllumCcm = {2.244826316833496,   -0.9087038040161133, -0.33612245321273804,
-                                       -0.5600823760032654, 1.7229819297790527,  -0.16289949417114258,
-                                       -0.5868203043937683, -1.3248286247253418, 2.911648750305176};
-const std::vector<double> kF01Ccm = {3.1115827560424805,   -1.9393929243087769, -0.172189861536026,
-                                     -0.3629055917263031,  1.6408803462982178,  -0.27797481417655945,
-                                     0.078967012465000153, -1.1558042764663696, 2.0768373012542725};
+// The real Illum white TXT's ccmRgbToSrgbArray (the captures' matrices are CameraModel::ccm).
 const std::vector<double> kIllumWhiteCcm = {2.4827811717987061,   -1.1018080711364746,  -0.38097298145294189,
                                             -0.36761483550071716, 1.6667767763137817,   -0.29916191101074219,
                                             -0.18722048401832581, -0.73317205905914307, 1.9203925132751465};
@@ -119,7 +113,7 @@ json IllumFrameMetadata(const CameraModel& camera, const RawCapture& raw) {
                 {"iso", camera.iso},
                 {"originOnSensor", {{"x", 0}, {"y", 0}}},
                 {"mosaic", Mosaic(camera)},
-                {"color", {{"whiteBalanceGain", WhiteBalanceGain(camera)}, {"ccm", kIllumCcm}}}};
+                {"color", {{"whiteBalanceGain", WhiteBalanceGain(camera)}, {"ccm", camera.ccm}}}};
   json per_ccm = json::array();
   per_ccm.push_back(
       {{"ccm",
@@ -191,7 +185,7 @@ json F01FrameMetadata(const CameraModel& camera, const RawCapture& raw) {
         {"pixelPacking", {{"endianness", "big"}, {"bitsPerPixel", camera.bits}}},
         {"mosaic", mosaic}}},
       {"color",
-       {{"ccmRgbToSrgbArray", kF01Ccm},
+       {{"ccmRgbToSrgbArray", camera.ccm},
         {"gamma", 0.41666001081466675},
         {"applied", json::object()},
         {"whiteBalanceGain", WhiteBalanceGain(camera)}}},
@@ -257,7 +251,7 @@ json WhiteImageMetadata(const CameraModel& camera, const RawCapture& white) {
         {"height", white.height},
         {"orientation", 1},
         {"color",
-         {{"ccmRgbToSrgbArray", f01 ? kF01Ccm : kIllumWhiteCcm},
+         {{"ccmRgbToSrgbArray", f01 ? json(camera.ccm) : json(kIllumWhiteCcm)},
           {"gamma", f01 ? 0.41666001081466675 : 0.4},
           {"applied", json::object()},
           {"whiteBalanceGain", Levels(1)}}},

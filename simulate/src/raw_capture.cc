@@ -104,6 +104,7 @@ struct SensorSetup {
   double disc_radius = 0;
   std::array<int, 4> tile{};
   std::array<double, 3> response{};
+  std::array<double, 9> scene_to_sensor{};  // CameraModel::SceneToSensor
 };
 
 SensorSetup Setup(const CameraModel& camera, int setting_index) {
@@ -116,6 +117,7 @@ SensorSetup Setup(const CameraModel& camera, int setting_index) {
   s.disc_radius = camera.DiscRadius(s.setting);
   s.tile = BayerTile(camera.bayer);
   s.response = {camera.response_r, 1.0, camera.response_b};
+  s.scene_to_sensor = camera.SceneToSensor();
   return s;
 }
 
@@ -184,6 +186,8 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
     std::uint16_t* row = raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width);
     for (int x = 0; x < raw.width; ++x) {
       const int channel = s.tile[static_cast<std::size_t>((y & 1) * 2 + (x & 1))];
+      // This pixel's colour filter sees the scene through the inverse of the metadata's colour matrix.
+      const double* to_sensor = &s.scene_to_sensor[3 * static_cast<std::size_t>(channel)];
       double sum = 0.0;
       for (int b = 0; b < k; ++b)
         for (int a = 0; a < k; ++a) {
@@ -199,7 +203,8 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
           const auto py = static_cast<float>(j);
           const auto vs = static_cast<float>(along * inv_step), vt = static_cast<float>(across * inv_step);
           const RayHit hit = tracer.Trace(px, py, vs, vt);
-          sum += m * tracer.Shade(hit, vs, vt)[static_cast<std::size_t>(channel)];
+          const Rgb scene_colour = tracer.Shade(hit, vs, vt);
+          sum += m * (to_sensor[0] * scene_colour[0] + to_sensor[1] * scene_colour[1] + to_sensor[2] * scene_colour[2]);
         }
       const double signal = options.exposure * s.response[static_cast<std::size_t>(channel)] * sum * inv_k2;
       row[x] = Digitise(

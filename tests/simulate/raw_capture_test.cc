@@ -143,6 +143,7 @@ TEST(RawCapture, RawAgreesWithDecodedGroundTruth) {
   const int uc = (shape.nu - 1) / 2;
   const double R = camera.DiscRadius(raw.setting);
   const std::array<double, 3> response{camera.response_r, 1.0, camera.response_b};
+  const std::array<double, 9> to_sensor = camera.SceneToSensor();
   double se = 0;
   std::size_t n = 0;
   for (int y = 8; y < raw.height - 8; ++y)
@@ -163,8 +164,11 @@ TEST(RawCapture, RawAgreesWithDecodedGroundTruth) {
                           : camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'g' ? 1
                                                                                                  : 2;
       const double f = xd - x0;
-      const double expected =
-          (1 - f) * gt.light_field.at({u, v}, j, x0, channel) + f * gt.light_field.at({u, v}, j, x0 + 1, channel);
+      // The pixel's filter sees the scene through the inverse of the metadata's colour matrix.
+      double expected = 0.0;
+      for (int k = 0; k < 3; ++k)
+        expected += to_sensor[3 * static_cast<std::size_t>(channel) + static_cast<std::size_t>(k)] *
+                    ((1 - f) * gt.light_field.at({u, v}, j, x0, k) + f * gt.light_field.at({u, v}, j, x0 + 1, k));
       const double measured = (raw.pixels[static_cast<std::size_t>(y * raw.width + x)] - camera.black) /
                               double(camera.white - camera.black) /
                               (options.exposure * response[static_cast<std::size_t>(channel)] * m);

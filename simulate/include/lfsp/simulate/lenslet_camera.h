@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,6 +36,10 @@ struct CameraModel {
   int white = 1023;
   double response_r = 0.757;  // sensor response relative to green (devices.sensor.normalizedResponses)
   double response_b = 0.722;
+  // The colour matrix the capture's metadata gives (image.color.ccm / ccmRgbToSrgbArray, row-major, applied to
+  // white-balanced sensor RGB). The sensor is rendered through its inverse, so a decoder that applies the metadata
+  // gets the scene's colours back.
+  std::array<double, 9> ccm = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   int iso = 100;
 
   // Micro-lens array (devices.mla).
@@ -64,6 +69,8 @@ struct CameraModel {
   // Derived values.
   double SpacingPixels(const LensSetting& setting) const;  // horizontal centre spacing at that zoom
   double DiscRadius(const LensSetting& setting) const;     // micro-image radius in pixels (aperture-limited)
+  // Row c: what sensor channel c (before its response) records of scene-linear RGB: the inverse of `ccm`.
+  std::array<double, 9> SceneToSensor() const;
 };
 
 // "f01", "illum", "mini-illum" or "mini-f01" (Illum / F01 optics on a small sensor, for fast tests and samples).
