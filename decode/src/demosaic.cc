@@ -3,8 +3,10 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "lfsp/core/error.h"
 
@@ -53,6 +55,12 @@ std::array<int, 4> Tile(BayerPattern pattern) {
   return {0, 1, 1, 2};
 }
 
+// Malvar's 5x5 correction is used where the white image stays at or above this over the whole window. Beyond, its
+// taps reach the dark gap between micro-images and the neighbouring lens's micro-image: dividing by the small white
+// there amplifies that neighbour's content, and the outermost well-lit Illum views (weight 0.64) came out displaced
+// outward by 0.28 px (bilinear's 3x3 taps: 0.03 px).
+constexpr float kGradientMinWhite = 0.15f;
+
 // Mirrors an index about the first / last pixel (keeps the Bayer phase: reflecting by 2k is phase-preserving).
 inline int Reflect(int i, int n) { return i < 0 ? -i : (i >= n ? 2 * n - 2 - i : i); }
 
@@ -87,27 +95,91 @@ inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp
   out[2] = blue;
 }
 
-cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern) {
+// Bilinear interpolation from the 3x3 neighbourhood (rows r[1..3]) over the neighbours under the same micro-lens
+// as the pixel (lens label rows l[1..3]): neighbours across the gap belong to another micro-image, which sees
+// another part of the scene. Falls back to all neighbours when none qualifies.
+struct EdgeRows {
+  const float* const* r;
+  const std::uint8_t* const* l;
+  int x;
+  std::uint8_t lens;
+  float Mean(std::initializer_list<std::pair<int, int>> taps) const {  // (row 1..3, column) pairs
+    float sum = 0.0f, all = 0.0f;
+    int count = 0;
+    for (const auto& [row, column] : taps) {
+      const float value = r[row][column];
+      all += value;
+      if (l[row][column] == lens) {
+        sum += value;
+        ++count;
+      }
+    }
+    return count > 0 ? sum / static_cast<float>(count) : all / static_cast<float>(taps.size());
+  }
+};
+
+inline void EdgeBilinearPixel(const EdgeRows& e, int xm1, int xp1, int colour, int horizontal_colour, float* out) {
+  const int x = e.x;
+  const float c = e.r[2][x];
+  const float horizontal = e.Mean({{2, xm1}, {2, xp1}});
+  const float vertical = e.Mean({{1, x}, {3, x}});
+  float red = 0.0f, green = 0.0f, blue = 0.0f;
+  if (colour == 1) {
+    green = c;
+    red = horizontal_colour == 0 ? horizontal : vertical;
+    blue = horizontal_colour == 0 ? vertical : horizontal;
+  } else {
+    green = e.Mean({{2, xm1}, {2, xp1}, {1, x}, {3, x}});
+    const float opposite = e.Mean({{1, xm1}, {1, xp1}, {3, xm1}, {3, xp1}});
+    red = colour == 0 ? c : opposite;
+    blue = colour == 0 ? opposite : c;
+  }
+  out[0] = red;
+  out[1] = green;
+  out[2] = blue;
+}
+
+// Pixels whose 5x5 window lies wholly inside one micro-image: under a single lens, and lit by the white image at
+// or above `min_white` everywhere in it.
+cv::Mat InsideMicroImages(const MicroImages& micro_images, float min_white) {
+  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5));
+  cv::Mat darkest, lowest_label, highest_label;
+  cv::erode(micro_images.white_grey, darkest, window);
+  cv::erode(micro_images.lens_labels, lowest_label, window);
+  cv::dilate(micro_images.lens_labels, highest_label, window);
+  return (darkest >= min_white) & (lowest_label == highest_label);
+}
+
+cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern, const MicroImages* micro_images) {
   const std::array<int, 4> tile = Tile(pattern);
   const int rows = bayer.rows, cols = bayer.cols;
+  const cv::Mat inside = micro_images ? InsideMicroImages(*micro_images, kGradientMinWhite) : cv::Mat();
   cv::Mat rgb(rows, cols, CV_32FC3);
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < rows; ++y) {
     const float* r[5];
-    for (int d = -2; d <= 2; ++d) r[d + 2] = bayer.ptr<float>(Reflect(y + d, rows));
+    const std::uint8_t* l[5] = {nullptr, nullptr, nullptr, nullptr, nullptr};
+    for (int d = -2; d <= 2; ++d) {
+      r[d + 2] = bayer.ptr<float>(Reflect(y + d, rows));
+      if (micro_images) l[d + 2] = micro_images->lens_labels.ptr<std::uint8_t>(Reflect(y + d, rows));
+    }
     float* out = rgb.ptr<float>(y);
+    const std::uint8_t* use_gradient = inside.empty() ? nullptr : inside.ptr<std::uint8_t>(y);
     const int even = tile[static_cast<std::size_t>(2 * (y & 1))], odd = tile[static_cast<std::size_t>(2 * (y & 1) + 1)];
+    auto pixel = [&](int x, int xm2, int xm1, int xp1, int xp2) {
+      const int colour = (x & 1) ? odd : even, horizontal_colour = (x & 1) ? even : odd;
+      if (use_gradient == nullptr || use_gradient[x] != 0)
+        GradientPixel(r, x, xm2, xm1, xp1, xp2, colour, horizontal_colour, out + 3 * x);
+      else
+        EdgeBilinearPixel({r, l, x, l[2][x]}, xm1, xp1, colour, horizontal_colour, out + 3 * x);
+    };
     auto border = [&](int x) {
-      GradientPixel(r, x, Reflect(x - 2, cols), Reflect(x - 1, cols), Reflect(x + 1, cols), Reflect(x + 2, cols),
-                    (x & 1) ? odd : even, (x & 1) ? even : odd, out + 3 * x);
+      pixel(x, Reflect(x - 2, cols), Reflect(x - 1, cols), Reflect(x + 1, cols), Reflect(x + 2, cols));
     };
     border(0);
     border(1);
-    for (int x = 2; x + 2 < cols; x += 2) {
-      GradientPixel(r, x, x - 2, x - 1, x + 1, x + 2, even, odd, out + 3 * x);
-      if (x + 3 < cols) GradientPixel(r, x + 1, x - 1, x, x + 2, x + 3, odd, even, out + 3 * (x + 1));
-    }
-    for (int x = std::max(2, cols - 3); x < cols; ++x) border(x);
+    for (int x = 2; x + 2 < cols; ++x) pixel(x, x - 2, x - 1, x + 1, x + 2);
+    for (int x = std::max(2, cols - 2); x < cols; ++x) border(x);
   }
   return rgb;
 }
@@ -132,7 +204,8 @@ DemosaicMethod DemosaicMethodFromString(const std::string& name) {
   throw Error("demosaic method '" + name + "': unknown (expected bilinear, edge-aware or gradient)");
 }
 
-cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value) {
+cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value,
+                 const MicroImages* micro_images) {
   if (bayer.type() != CV_32FC1 || bayer.rows < 4 || bayer.cols < 4)
     throw Error("demosaic: expected a single-channel float Bayer image of at least 4x4 pixels");
   switch (method) {
@@ -141,7 +214,7 @@ cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod meth
     case DemosaicMethod::kEdgeAware:
       return DemosaicOpenCv(bayer, pattern, true, max_value);
     case DemosaicMethod::kGradient:
-      return DemosaicGradient(bayer, pattern);
+      return DemosaicGradient(bayer, pattern, micro_images);
   }
   throw Error("demosaic: unknown method");
 }

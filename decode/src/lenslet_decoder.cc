@@ -79,16 +79,21 @@ std::array<float, 4> WhiteGains(ColourMode mode, const RawImage& white, const Ly
   return gains;
 }
 
-// The camera's colour transform as one 3x3 matrix: exposure bias * CCM * diag(white balance).
-std::array<float, 9> CameraColourMatrix(const LytroMetadata& metadata) {
+// The colour transform of a mode as one 3x3 matrix applied to devignetted sensor RGB.
+//   camera: exposure bias * CCM * diag(white balance): the white image kept the sensor's raw colour, so the
+//           capture's white balance applies, then the colour matrix.
+//   linear: CCM alone: dividing by the white image has already balanced the channels (to the calibration light),
+//           so only the colour matrix takes sensor primaries to scene-linear (sRGB-primary) RGB.
+std::array<float, 9> ColourMatrix(const LytroMetadata& metadata, ColourMode mode) {
   std::array<double, 3> balance = {1.0, 1.0, 1.0};
-  if (const auto& gain = metadata.colour.white_balance_gain; gain && gain->gr > 0 && gain->gb > 0)
+  if (const auto& gain = metadata.colour.white_balance_gain;
+      mode == ColourMode::kCamera && gain && gain->gr > 0 && gain->gb > 0)
     balance = {gain->r / (0.5 * (gain->gr + gain->gb)), 1.0, gain->b / (0.5 * (gain->gr + gain->gb))};
   std::array<double, 9> ccm = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   if (metadata.colour.ccm) ccm = *metadata.colour.ccm;
   // LFToolbox v0.6: the F01's bias is stated one stop lower than it is applied (bias + 1); the Illum's as is.
   const double stops = metadata.modulation_exposure_bias.value_or(0.0) + (metadata.camera_model == "F01" ? 1.0 : 0.0);
-  const double bias = std::exp2(stops);
+  const double bias = mode == ColourMode::kCamera ? std::exp2(stops) : 1.0;
   std::array<float, 9> matrix{};
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
@@ -198,14 +203,16 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   timer.Lap("levels_hot_pixels_devignette");
 
   // 2. Demosaic.
-  const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic);
+  const cv::Mat lens_labels = LensLabels(grid);
+  const MicroImages micro_images{white.grey, lens_labels};
+  const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
   bayer.release();
   timer.Lap("demosaic");
 
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
   //    never clipped: the whole light field is darkened instead).
   RayColour colour;
-  if (options.colour == ColourMode::kCamera) colour.matrix = CameraColourMatrix(capture_metadata);
+  colour.matrix = ColourMatrix(capture_metadata, options.colour);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
   out_report.output_scale = colour.scale;
@@ -214,7 +221,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   // 4. One interpolation pass into the 4D grid, then the row-alternation softening and encoding.
   LightField light_field = allocation.get();
   timer.Lap("allocate_wait");
-  SliceLensletImage(rgb, white.grey, grid, geometry, colour, light_field);
+  SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
   timer.Lap("slice");
   SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <opencv2/core.hpp>
 
 #include "bayer_levels.h"
@@ -32,6 +33,38 @@ void LensletGrid::SensorPosition(double a, double b, double along, double across
   const double p = a * spacing_x + along, q = b * spacing_y + across;
   x = origin_x + c * p - s * q;
   y = origin_y + s * p + c * q;
+}
+
+void LensletGrid::Nearest(double x, double y, int& i, int& j) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const double dx = x - origin_x, dy = y - origin_y;
+  const double along = (c * dx + s * dy) / spacing_x;
+  const double across = (-s * dx + c * dy) / spacing_y;
+  const int j0 = static_cast<int>(std::floor(across));
+  double best = std::numeric_limits<double>::max();
+  for (int jj = j0; jj <= j0 + 1; ++jj) {
+    const int ii = static_cast<int>(std::lround(along - 0.5 * Shift(jj)));
+    const double ea = (along - ii - 0.5 * Shift(jj)) * spacing_x, eb = (across - jj) * spacing_y;
+    if (ea * ea + eb * eb < best) {
+      best = ea * ea + eb * eb;
+      i = ii;
+      j = jj;
+    }
+  }
+}
+
+cv::Mat LensLabels(const LensletGrid& grid) {
+  cv::Mat labels(grid.sensor_height, grid.sensor_width, CV_8U);
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < labels.rows; ++y) {
+    auto* row = labels.ptr<std::uint8_t>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      int i = 0, j = 0;
+      grid.Nearest(x, y, i, j);
+      row[x] = static_cast<std::uint8_t>((i & 3) + 4 * (j & 1));
+    }
+  }
+  return labels;
 }
 
 nlohmann::json LensletGrid::ToJson() const {

@@ -12,13 +12,29 @@ namespace {
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 
 // Bilinear samples of the RGB image and the grey white image at the same sensor point (x, y), clamped to the
-// image: the position, the 4 weights and the addresses are computed once for both.
-inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, double x, double y, float* colour, float* white) {
+// image: the position, the 4 weights and the addresses are computed once for both. Taps under another micro-lens
+// than `lens` (LensLabels) are left out and the rest renormalised: the outer views' samples lie within 1.5 px of
+// the boundary with the next lens, whose micro-image sees another part of the scene.
+inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& labels, std::uint8_t lens, double x,
+                       double y, float* colour, float* white) {
   x = std::clamp(x, 0.0, rgb.cols - 1.0001);
   y = std::clamp(y, 0.0, rgb.rows - 1.0001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const auto fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  const std::uint8_t* l = labels.ptr<std::uint8_t>(y0) + x0;
+  const std::uint8_t* m = labels.ptr<std::uint8_t>(y0 + 1) + x0;
+  if ((l[0] != lens) | (l[1] != lens) | (m[0] != lens) | (m[1] != lens)) {
+    const float kept = (l[0] == lens ? w00 : 0.0f) + (l[1] == lens ? w01 : 0.0f) + (m[0] == lens ? w10 : 0.0f) +
+                       (m[1] == lens ? w11 : 0.0f);
+    if (kept > 0.0f) {
+      const float scale = 1.0f / kept;
+      w00 = l[0] == lens ? w00 * scale : 0.0f;
+      w01 = l[1] == lens ? w01 * scale : 0.0f;
+      w10 = m[0] == lens ? w10 * scale : 0.0f;
+      w11 = m[1] == lens ? w11 * scale : 0.0f;
+    }
+  }
   const float* p = rgb.ptr<float>(y0) + 3 * x0;
   const float* q = rgb.ptr<float>(y0 + 1) + 3 * x0;
   for (int c = 0; c < 3; ++c) colour[c] = w00 * p[c] + w01 * p[3 + c] + w10 * q[c] + w11 * q[3 + c];
@@ -26,6 +42,11 @@ inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, double x, double
   const float* h = grey.ptr<float>(y0 + 1) + x0;
   *white = w00 * g[0] + w01 * g[1] + w10 * h[0] + w11 * h[1];
 }
+
+// The exposure is set from this quantile of the brightest channel of well-lit rays, not from the single brightest:
+// sensor noise amplified by devignetting, demosaicking and the colour matrix put the maximum of a well-exposed
+// mini-Illum capture at 1.16 (scene at most 0.67), which darkened the whole light field by 14 %.
+constexpr double kBrightQuantile = 0.9999;
 
 // Catmull-Rom (Keys, a = -0.5) weights of the 4 samples around fraction f in [0, 1).
 inline void CubicWeights(float f, float* w) {
@@ -89,8 +110,9 @@ class SrgbTable {
 
 }  // namespace
 
-void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const LensletGrid& grid,
-                       const DecodedGeometry& geometry, const RayColour& colour, LightField& light_field) {
+void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
+                       const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
+                       LightField& light_field) {
   const int views = geometry.views;
   const int centre = (views - 1) / 2;
   const int width = geometry.width;
@@ -130,10 +152,13 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
       double cx = 0.0, cy = 0.0;
       grid.SensorPosition(lens_begin + 0.5 * shift, y, 0.0, 0.0, cx, cy);
       for (std::size_t lens = 0; lens < lenses; ++lens, cx += pitch_x, cy += pitch_y) {
+        const int i = lens_begin + static_cast<int>(lens);
+        const auto label = static_cast<std::uint8_t>((i & 3) + 4 * (y & 1));  // as LensLabels
         for (std::size_t k = 0; k < static_cast<std::size_t>(view_count); ++k) {
           if (!inside_lens[k]) continue;
           float in[3];
-          SampleBoth(rgb, grey_white, cx + offset_x[k], cy + offset_y[k], in, &white[k * lenses + lens]);
+          SampleBoth(rgb, grey_white, lens_labels, label, cx + offset_x[k], cy + offset_y[k], in,
+                     &white[k * lenses + lens]);
           float* out = &samples[(k * lenses + lens) * 3];
           out[0] = m[0] * in[0] + m[1] * in[1] + m[2] * in[2];
           out[1] = m[3] * in[0] + m[4] * in[1] + m[5] * in[2];
@@ -158,9 +183,10 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
           const auto first = static_cast<std::size_t>(row_taps.first[static_cast<std::size_t>(x)]);
           const float* w = &row_taps.weights[4 * static_cast<std::size_t>(x)];
           const float* p = view_samples + 3 * first;
+          // Not clamped: linear light keeps its signed noise (the colour matrix amplifies it, and clipping the
+          // negative half brightened a dim capture by 18 %); the sRGB encoding of camera colour clamps.
           for (int ch = 0; ch < 3; ++ch)
-            out[3 * x + ch] =
-                std::clamp(w[0] * p[ch] + w[1] * p[3 + ch] + w[2] * p[6 + ch] + w[3] * p[9 + ch], 0.0f, 1.0f);
+            out[3 * x + ch] = w[0] * p[ch] + w[1] * p[3 + ch] + w[2] * p[6 + ch] + w[3] * p[9 + ch];
           const float* q = view_white + first;
           weight_out[x] = std::clamp(w[0] * q[0] + w[1] * q[1] + w[2] * q[2] + w[3] * q[3], 0.0f, 1.0f);
         }
@@ -170,19 +196,47 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const Lens
 }
 
 float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& m) {
-  float brightest = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : brightest)
+  auto brightest_channel = [&](const float* in) {
+    return std::max({m[0] * in[0] + m[1] * in[1] + m[2] * in[2], m[3] * in[0] + m[4] * in[1] + m[5] * in[2],
+                     m[6] * in[0] + m[7] * in[1] + m[8] * in[2]});
+  };
+  // Pass 1: the maximum, which bounds the histogram of pass 2.
+  float top = 0.0f;
+#pragma omp parallel for schedule(static) reduction(max : top)
   for (int y = 0; y < rgb.rows; ++y) {
     const float* p = rgb.ptr<float>(y);
     const float* w = grey_white.ptr<float>(y);
-    for (int x = 0; x < rgb.cols; ++x) {
-      if (w[x] < 0.5f) continue;
-      const float* in = p + 3 * x;
-      brightest = std::max({brightest, m[0] * in[0] + m[1] * in[1] + m[2] * in[2],
-                            m[3] * in[0] + m[4] * in[1] + m[5] * in[2], m[6] * in[0] + m[7] * in[1] + m[8] * in[2]});
-    }
+    for (int x = 0; x < rgb.cols; ++x)
+      if (w[x] >= 0.5f) top = std::max(top, brightest_channel(p + 3 * x));
   }
-  return brightest;
+  if (!(top > 0.0f)) return top;
+  // Pass 2: the kBrightQuantile level of the brightest channel, from a histogram.
+  constexpr int kBins = 16384;
+  std::vector<long long> histogram(kBins, 0);
+  long long lit = 0;
+#pragma omp parallel reduction(+ : lit)
+  {
+    std::vector<long long> local(kBins, 0);
+#pragma omp for schedule(static)
+    for (int y = 0; y < rgb.rows; ++y) {
+      const float* p = rgb.ptr<float>(y);
+      const float* w = grey_white.ptr<float>(y);
+      for (int x = 0; x < rgb.cols; ++x) {
+        if (w[x] < 0.5f) continue;
+        const float value = std::max(0.0f, brightest_channel(p + 3 * x));
+        ++local[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(value / top * kBins)))];
+        ++lit;
+      }
+    }
+#pragma omp critical
+    for (int k = 0; k < kBins; ++k) histogram[static_cast<std::size_t>(k)] += local[static_cast<std::size_t>(k)];
+  }
+  const auto wanted = static_cast<long long>(kBrightQuantile * static_cast<double>(lit));
+  long long count = 0;
+  int bin = 0;
+  while (bin < kBins - 1 && count + histogram[static_cast<std::size_t>(bin)] < wanted)
+    count += histogram[static_cast<std::size_t>(bin++)];
+  return (static_cast<float>(bin) + 1.0f) * top / kBins;
 }
 
 void SoftenAndEncode(LightField& light_field, float alpha, bool srgb) {

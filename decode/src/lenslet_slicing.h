@@ -19,14 +19,17 @@ struct RayColour {
 // interpolation pass: for every lens row y and view (u, v), each micro-lens of the row is looked up once at the
 // view's offset ((u - uc), (v - vc)) * view_step from its centre (bilinear in the sensor image), then the output
 // row is interpolated along the lens row (cubic, Catmull-Rom) at lattice positions x * sqrt(3)/2: hexagonal to
-// rectangular. Weights come the same way from `grey_white`, zero beyond the micro-lens radius. `rgb` is CV_32FC3
+// rectangular. Weights come the same way from `grey_white`, zero beyond the micro-lens radius. Each lookup keeps
+// to its own micro-lens (`lens_labels`, LensLabels). `rgb` is CV_32FC3
 // (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows, which keeps each
 // thread's reads within a band of sensor rows.
-void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const LensletGrid& grid,
-                       const DecodedGeometry& geometry, const RayColour& colour, LightField& light_field);
+void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
+                       const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
+                       LightField& light_field);
 
-// The largest channel of M * rgb over the well-lit sensor pixels (grey white >= 0.5): the brightest ray the light
-// field will hold, so a scale that keeps every highlight unclipped can be chosen before slicing.
+// The level of the brightest rays: the 99.99th percentile of the largest channel of M * rgb over the well-lit
+// sensor pixels (grey white >= 0.5), so a scale that keeps highlights unclipped can be chosen before slicing
+// without a few noise outliers setting it.
 float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& matrix);
 
 // Softens what hexagonal sampling leaves behind: along vertical edges, shifted and unshifted lens rows place the edge

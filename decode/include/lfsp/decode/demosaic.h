@@ -18,8 +18,18 @@ enum class DemosaicMethod { kBilinear, kEdgeAware, kGradient };
 std::string_view ToString(DemosaicMethod method);
 DemosaicMethod DemosaicMethodFromString(const std::string& name);  // lfsp::Error on an unknown name
 
+// The micro-image layout of a lenslet capture, for demosaicking it: the white image as one grey image (micro-image
+// centres at 1) and the label of the lens over each pixel (LensLabels).
+struct MicroImages {
+  const cv::Mat& white_grey;
+  const cv::Mat& lens_labels;
+};
+
 // Demosaics a single-channel float Bayer image (values >= 0, any scale up to `max_value`) into an interleaved RGB
-// float image (CV_32FC3, R first). Parallel.
-cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value = 4.0f);
+// float image (CV_32FC3, R first). Parallel. With `micro_images`, kGradient keeps to each micro-image: near its edge
+// it falls back to bilinear over the neighbours under the same lens, so no neighbouring micro-image leaks into the
+// outer views.
+cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value = 4.0f,
+                 const MicroImages* micro_images = nullptr);
 
 }  // namespace lfsp::decode

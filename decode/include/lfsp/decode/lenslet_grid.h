@@ -39,10 +39,17 @@ struct LensletGrid {
   // (along, across) in pixels in the lattice frame.
   void SensorPosition(double a, double b, double along, double across, double& x, double& y) const;
 
+  // The lens (i, j) whose centre is nearest to sensor point (x, y); indices may fall outside the usable grid.
+  void Nearest(double x, double y, int& i, int& j) const;
+
   nlohmann::json ToJson() const;
   // lfsp::Error naming `source` if a field is missing or out of range.
   static LensletGrid FromJson(const nlohmann::json& json, const std::string& source);
 };
+
+// Which micro-lens each sensor pixel lies under, as a label that differs between any two neighbouring lenses
+// ((i mod 4) + 4 (j mod 2), CV_8U): enough to keep an interpolation within one micro-image. Parallel.
+cv::Mat LensLabels(const LensletGrid& grid);
 
 // Where the estimation starts: the camera's description of its micro-lens array.
 struct GridGuess {
