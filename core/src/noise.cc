@@ -30,6 +30,15 @@ double EstimateNoiseSigma(const cv::Mat& image) {
   return static_cast<double>(*middle) / (0.6745 * 6.0);
 }
 
+double EstimateChannelNoiseSigma(const cv::Mat& rgb) {
+  if (rgb.channels() == 1) return EstimateNoiseSigma(rgb);
+  std::vector<cv::Mat> channels;
+  cv::split(rgb, channels);
+  double largest = 0.0;
+  for (const cv::Mat& channel : channels) largest = std::max(largest, EstimateNoiseSigma(channel));
+  return largest;
+}
+
 double SmoothingForNoise(double noise_sigma, double pixels_per_noise, double max_pixels) {
   if (!(noise_sigma > kCleanNoiseLevel)) return 0.0;
   return std::min(max_pixels, pixels_per_noise * (noise_sigma - kCleanNoiseLevel));

@@ -134,12 +134,12 @@ const float* FeatureView(const std::vector<float>& features, const LightFieldSha
          static_cast<std::size_t>(CameraNumber(view, shape.nu)) * shape.ViewPixels() * kFeatureChannels;
 }
 
-std::vector<ViewPlan> PlanViews(const LightFieldShape& shape, const std::vector<float>& features) {
+std::vector<ViewPlan> PlanViews(const LightFieldShape& shape, const std::vector<float>& features, int skip_ring) {
   const ViewIndex centre = shape.Centre();
   std::vector<ViewPlan> plans;
   for (int v = 0; v < shape.nv; ++v) {
     for (int u = 0; u < shape.nu; ++u) {
-      if (u == centre.u && v == centre.v) continue;
+      if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) <= skip_ring) continue;
       plans.push_back({FeatureView(features, shape, {u, v}), static_cast<float>(u - centre.u),
                        static_cast<float>(v - centre.v), SectorOfOffset(u - centre.u, v - centre.v)});
     }
@@ -202,7 +202,10 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   }
   const std::vector<float> features = MakeFeatureImages(light_field, options);
   const float* centre = FeatureView(features, shape, shape.Centre());
-  const std::vector<ViewPlan> plans = PlanViews(shape, features);
+  const std::vector<ViewPlan> plans = PlanViews(shape, features, std::max(0, options.excluded_ring));
+  if (plans.empty())
+    throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
+                " of the centre leaves none");
   const TermWeights terms{options.colour_weight, options.colour_deadzone, options.colour_truncation,
                           options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f};
   const SplitTable splits = MakeSplitTable(plans);

@@ -1,5 +1,6 @@
 #include "lfsp/depth/depth_estimator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -48,9 +49,10 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   }
   StepTimer timer(result.timings);
   // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
-  result.noise_sigma = EstimateNoiseSigma(light_field.View(light_field.shape().Centre()));
-  result.presmooth_sigma =
-      options.presmooth_sigma < 0.0f ? PresmoothSigmaForNoise(result.noise_sigma) : options.presmooth_sigma;
+  result.noise_sigma = EstimateChannelNoiseSigma(light_field.View(light_field.shape().Centre()));
+  result.presmooth_sigma = options.presmooth_sigma < 0.0f
+                               ? std::max(PresmoothSigmaForNoise(result.noise_sigma), PresmoothFloorFor(light_field))
+                               : options.presmooth_sigma;
   std::optional<LightField> smoothed;
   if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
   const LightField& views = smoothed ? *smoothed : light_field;
@@ -69,7 +71,10 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     result.occlusion_candidates = occlusion->Candidates();
   }
   timer.Lap("occlusion_edges");
-  CostVolume cost = BuildCostVolume(views, disparities, options.cost, occlusion ? &*occlusion : nullptr);
+  CostOptions cost_options = options.cost;
+  if (cost_options.excluded_ring < 0) cost_options.excluded_ring = ExcludedRingFor(light_field);
+  result.excluded_ring = cost_options.excluded_ring;
+  CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   timer.Lap("cost_volume");
   if (options.aggregation_radius > 0) {
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);

@@ -49,6 +49,7 @@ nlohmann::json ToJson(const DepthOptions& options) {
                        {"min_support", options.plane.min_support}};
   json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
   json["presmooth_sigma"] = options.presmooth_sigma;
+  json["excluded_ring"] = options.cost.excluded_ring;
   return json;
 }
 

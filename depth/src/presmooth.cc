@@ -1,10 +1,22 @@
 #include "lfsp/depth/presmooth.h"
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 
 namespace lfsp::depth {
 
-double PresmoothSigmaForNoise(double noise_sigma) { return SmoothingForNoise(noise_sigma, 100.0, 2.5); }
+double PresmoothSigmaForNoise(double noise_sigma) {
+  return std::clamp(1000.0 * (noise_sigma - kDepthCleanNoise), 0.0, 2.5);
+}
+
+int ExcludedRingFor(const LightField& light_field) {
+  const LightFieldShape& shape = light_field.shape();
+  return light_field.metadata.contains("decode") && std::min(shape.nu, shape.nv) >= 5 ? 1 : 0;
+}
+
+double PresmoothFloorFor(const LightField& light_field) {
+  return light_field.metadata.contains("decode") ? kLensletPresmoothFloor : 0.0;
+}
 
 LightField Presmoothed(const LightField& light_field, double sigma) {
   // Written view by view straight from the input: no copy of the samples first (the cost volume reads no weights).

@@ -17,10 +17,10 @@ namespace lfsp::depth {
 namespace {
 
 TEST(NoiseEstimate, SmoothingGrowsWithNoiseAndIsCapped) {
-  EXPECT_EQ(PresmoothSigmaForNoise(0.002), 0.0);
-  EXPECT_EQ(PresmoothSigmaForNoise(kCleanNoiseLevel), 0.0);
-  EXPECT_NEAR(PresmoothSigmaForNoise(0.014), 1.0, 1e-9);
-  EXPECT_LT(PresmoothSigmaForNoise(0.01), PresmoothSigmaForNoise(0.02));
+  EXPECT_EQ(PresmoothSigmaForNoise(0.0019), 0.0);  // HCI antinous
+  EXPECT_EQ(PresmoothSigmaForNoise(kDepthCleanNoise), 0.0);
+  EXPECT_NEAR(PresmoothSigmaForNoise(0.004), 1.0, 1e-9);
+  EXPECT_LT(PresmoothSigmaForNoise(0.0035), PresmoothSigmaForNoise(0.0045));
   EXPECT_EQ(PresmoothSigmaForNoise(0.5), 2.5);
 }
 

@@ -11,6 +11,12 @@ namespace lfsp {
 // segmentation use it to decide how much to smooth noisy views.
 double EstimateNoiseSigma(const cv::Mat& image);
 
+// The same estimate on each channel of an RGB image, the largest of the three. A colour matrix with large
+// off-diagonal terms (a Lytro decode's) amplifies the noise of each channel but largely cancels it in their mean,
+// so the grey estimate reads a noisy decode low: a full-size F01 capture reads 0.0018 grey, 0.0052 here, its true
+// per-channel noise being 0.011-0.027 (spatially correlated by resampling, which the 3x3 mask sees only in part).
+double EstimateChannelNoiseSigma(const cv::Mat& rgb);
+
 // Below this estimated noise a view counts as clean: a rendered or well-exposed view reads 0.002-0.003.
 constexpr double kCleanNoiseLevel = 0.004;
 

@@ -61,6 +61,12 @@ struct CostOptions {
   // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is
   // still lower: half the views are noisier, so on textured, unoccluded surfaces the whole patch must win.
   float half_patch_penalty = 1.0f;
+  // Views within this many steps of the centre view (Chebyshev distance) are left out of the cost; < 0 =
+  // automatic (EstimateDepth: 1 for light fields decoded from a lenslet sensor, else 0). In a lenslet decode,
+  // neighbouring views are neighbouring sensor pixels of one micro-image, and demosaicking and the sub-pixel
+  // lookup mix them: the centre view shares noise with its neighbours at zero shift, which draws every disparity
+  // towards 0 (full-size F01 strips with sensor noise read 0.72x their disparity).
+  int excluded_ring = -1;
   int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 

@@ -41,6 +41,7 @@ struct DepthResult {
   double occlusion_radius = 0.0;  // the radius used (after the automatic choice)
   double noise_sigma = 0.0;       // estimated noise of the centre view (Immerkaer), sample units
   double presmooth_sigma = 0.0;   // the smoothing used, pixels (after the automatic choice)
+  int excluded_ring = 0;          // views this close to the centre left out of the cost (after the automatic choice)
   nlohmann::json timings;         // seconds per step
 };
 
