@@ -17,11 +17,13 @@
 #include "lfsp/depth/depth_io.h"
 #include "lfsp/depth/metrics.h"
 #include "summary.h"
+#include "view_selection.h"
 
 namespace lfsp::cli {
 namespace {
 
 struct DepthCommandOptions {
+  int views = 0;
   std::string input;
   std::string output;
   std::optional<float> dmin;
@@ -43,7 +45,8 @@ depth::DepthOptions MethodOptions(const DepthCommandOptions& options) {
 void RunDepth(const DepthCommandOptions& options) {
   const depth::DepthOptions method = MethodOptions(options);
   const auto start = std::chrono::steady_clock::now();
-  const Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadLightField(options.input);
+  const nlohmann::json views = SelectViews(bundle, options.views, options.input);
   const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("{}: {}", options.input, ToString(bundle.light_field.shape()));
   const depth::DepthResult result = depth::EstimateDepth(bundle.light_field, method);
@@ -53,6 +56,7 @@ void RunDepth(const DepthCommandOptions& options) {
   nlohmann::json summary;
   summary["command"] = "depth";
   summary["input"] = options.input;
+  summary["views"] = views;
   summary["outputs"] = {{"disparity", paths.disparity.string()},
                         {"preview", paths.preview.string()},
                         {"confidence", paths.confidence.string()}};
@@ -61,6 +65,7 @@ void RunDepth(const DepthCommandOptions& options) {
   summary["occlusion_candidates"] = result.occlusion_candidates;
   summary["noise_sigma"] = result.noise_sigma;
   summary["presmooth_sigma"] = result.presmooth_sigma;
+  summary["excluded_ring"] = result.excluded_ring;
   summary["timings_seconds"] = result.timings;
   summary["timings_seconds"]["load"] = load_seconds;
   if (bundle.disparity && bundle.disparity->width() == result.disparity.width() &&
@@ -86,6 +91,7 @@ void AddDepthCommand(CLI::App& parent) {
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--out", options->output, "Output disparity PFM (HCI convention)")->required();
+  AddViewsOption(command, options->views);
   command->add_option("--dmin", options->dmin,
                       "Smallest disparity (px per view step); default: disp_min of parameters.cfg / bundle metadata");
   command->add_option("--dmax", options->dmax, "Largest disparity; default: disp_max of the metadata");
@@ -108,6 +114,12 @@ void AddDepthCommand(CLI::App& parent) {
   command->add_option("--p1", method.sgm.p1, "SGM penalty for a one-label step")->capture_default_str();
   command->add_option("--p2", method.sgm.p2, "SGM penalty for a larger jump (lowered across colour edges)")
       ->capture_default_str();
+  command
+      ->add_option("--excluded-ring", method.cost.excluded_ring,
+                   "Leave the views within N steps of the centre out of the cost; -1 = automatic (1 for light "
+                   "fields decoded from a lenslet capture, whose neighbouring views share sensor pixels and noise)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 16));
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

@@ -8,6 +8,7 @@
 
 #include "../pipeline/pipeline.h"
 #include "command_registry.h"
+#include "view_selection.h"
 
 namespace lfsp::cli {
 namespace {
@@ -23,6 +24,7 @@ void AddPipelineCommand(CLI::App& app) {
                       "Lytro capture (.lfr/.lfp, with white images) or light field (views folder, .h5 bundle); "
                       "default: the bundled mini-Illum capture");
   command->add_option("--out", *out, "Output folder for every intermediate, summary.json and report.html")->required();
+  AddViewsOption(command, options->views);
   command->add_option("--white-images", options->white_images,
                       "Folder of white images for a raw capture (default: beside the capture, and its whites/)");
   auto dmin = std::make_shared<float>(0.0f);

@@ -18,6 +18,7 @@
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/selection.h"
 #include "summary.h"
+#include "view_selection.h"
 
 namespace lfsp::cli {
 namespace {
@@ -25,6 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RecolorCommandOptions {
+  int views = 0;
   std::string input;
   std::string labels;
   std::vector<std::int32_t> label_ids;
@@ -113,6 +115,11 @@ void RunRecolor(const RecolorCommandOptions& options) {
   } else if (!bundle.labels) {
     throw Error(options.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
   }
+  // Labels made on the well-lit central views (as `lfsp segment` chooses them) select the same views here.
+  const int label_views = bundle.labels->shape().nu;
+  const int requested =
+      options.views > 0 ? options.views : (label_views < bundle.light_field.shape().nu ? label_views : 0);
+  summary["views"] = SelectViews(bundle, requested, options.input);
   edit::CheckLabelsMatch(*bundle.labels, bundle.light_field.shape(),
                          options.labels.empty() ? options.input : options.labels);
   timings["load_s"] = SecondsSince(step);
@@ -170,6 +177,7 @@ void AddRecolorCommand(CLI::App& app) {
       "bit-identical. Writes the new light field, before/after previews of the centre view and a JSON summary");
   command->add_option("light_field", options->input, "Input light field (views folder, .h5 bundle or ESLF .png)")
       ->required();
+  AddViewsOption(command, options->views);
   command->add_option("--labels", options->labels,
                       "HDF5 file with per-ray labels, dataset 'labels' (nv x nu x H x W int32, as `lfsp segment` "
                       "writes it) or 'GT_LABELS' (default: the input bundle's own labels)");

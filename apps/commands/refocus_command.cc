@@ -23,6 +23,7 @@
 #include "lfsp/edit/image_measures.h"
 #include "lfsp/edit/refocus.h"
 #include "summary.h"
+#include "view_selection.h"
 
 namespace lfsp::cli {
 namespace {
@@ -30,6 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RefocusCommandOptions {
+  int views = 0;
   std::string input;
   std::vector<float> disparities;
   int stack = 0;
@@ -103,7 +105,8 @@ void RunRefocus(const RefocusCommandOptions& options) {
   summary["input"] = options.input;
 
   auto step = std::chrono::steady_clock::now();
-  const Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadLightField(options.input);
+  summary["views"] = SelectViews(bundle, options.views, options.input);
   const LightField& light_field = bundle.light_field;
   timings["load_s"] = SecondsSince(step);
   summary["light_field"] = {{"shape", ToString(light_field.shape())},
@@ -227,6 +230,7 @@ void AddRefocusCommand(CLI::App& app) {
                     "Ignore the input's per-ray weights (default: rays are weighted by them when present)");
   command->add_option("--bit-depth", options->bit_depth, "Bits per sample of the PNGs written: 8 or 16 (default: 8)");
   command->add_option("--out", options->out, "Output folder (replaced atomically when complete)")->required();
+  AddViewsOption(command, options->views);
   command->callback([options] { RunRefocus(*options); });
 }
 

@@ -20,11 +20,13 @@
 #include "lfsp/segment/metrics.h"
 #include "lfsp/segment/output.h"
 #include "summary.h"
+#include "view_selection.h"
 
 namespace lfsp::cli {
 namespace {
 
 struct SegmentCommandOptions {
+  int views = 0;
   std::string input;
   std::string disparity;
   std::string output;
@@ -43,6 +45,7 @@ std::filesystem::path Beside(const std::filesystem::path& output, const std::str
 void RunSegment(const SegmentCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   Bundle bundle = LoadLightField(options.input);
+  const nlohmann::json views = SelectViews(bundle, options.views, options.input);
   DisparityMap disparity;
   std::string disparity_source;
   if (!options.disparity.empty()) {
@@ -81,13 +84,12 @@ void RunSegment(const SegmentCommandOptions& options) {
                                                    {"disparity", disparity_source}};
   labelled.disparity = disparity;
   labelled.labels = result.labels;
-  BundleWriteOptions write;
-  write.storage = SampleStorage::kUint16;
-  WriteBundle(labelled, out, write);
+  WriteBundle(labelled, out, CompactBundleOptions(labelled.light_field));
 
   nlohmann::json summary;
   summary["command"] = "segment";
   summary["input"] = options.input;
+  summary["views"] = views;
   summary["disparity"] = disparity_source;
   summary["shape"] = ToString(shape);
   summary["outputs"] = {{"bundle", out.string()},
@@ -140,6 +142,7 @@ void AddSegmentCommand(CLI::App& parent) {
                    "beside the views, or the bundle's dataset)")
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->output, "Output bundle (.h5)")->required();
+  AddViewsOption(command, options->views);
   command->add_option("--labels-png", options->labels_png,
                       "Also write label_Cam%03d.png (16-bit, one per view) into this folder (default: none)");
   command->add_option("--epi-row", options->epi_row, "Image row of the horizontal EPI overlay (default: middle)");

@@ -11,6 +11,7 @@
 
 #include "../report/html_report.h"
 #include "../summary.h"
+#include "../view_selection.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
@@ -130,6 +131,23 @@ fs::path DefaultSample() {
   throw Error(samples.string() + ": no bundled sample found (regenerate with tools/make_samples, or pass an INPUT)");
 }
 
+// Bytes of every file the run wrote (relative paths), and their total.
+nlohmann::ordered_json OutputSizes(const fs::path& folder) {
+  nlohmann::ordered_json sizes = nlohmann::ordered_json::object();
+  std::uintmax_t total = 0;
+  std::vector<std::pair<std::string, std::uintmax_t>> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file())
+      files.emplace_back(fs::relative(entry.path(), folder).generic_string(), entry.file_size());
+  std::sort(files.begin(), files.end());
+  for (const auto& [name, bytes] : files) {
+    sizes[name] = bytes;
+    total += bytes;
+  }
+  sizes["total"] = total;
+  return sizes;
+}
+
 PipelineResult RunPipeline(const PipelineOptions& options) {
   const auto wall_start = Clock::now();
   const fs::path input = options.input.empty() ? DefaultSample() : options.input;
@@ -154,10 +172,11 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     Bundle out;
     out.light_field = std::move(decoded.light_field);
     summary["decode"] = decoded.summary;
-    WriteBundle(out, options.out / "decoded.h5");
     AttachSimulatorGroundTruth(input, out);
     return out;
   });
+  // Stored once, in segmentation.h5, after the views to process are chosen.
+  summary["views"] = cli::SelectViews(bundle, options.views, input.string());
   const LightField& light_field = bundle.light_field;
   summary["light_field"] = ToString(light_field.shape());
 
@@ -177,7 +196,15 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     labelled.light_field = std::move(bundle.light_field);
     labelled.disparity = depth_result.disparity;
     labelled.labels = std::move(lfsp.labels);
-    WriteBundle(labelled, options.out / "segmentation.h5");
+    // As `lfsp segment` writes it: the parameters travel with the labels (evaluate re-runs the refocus sweep).
+    nlohmann::json& metadata = labelled.light_field.metadata;
+    const nlohmann::json previous = metadata.value("lfsp_segment", nlohmann::json());
+    metadata["lfsp_segment"] = {{"parameters", segment::ToJson(options.segment)}, {"disparity", "lfsp depth"}};
+    WriteBundle(labelled, options.out / "segmentation.h5", CompactBundleOptions(labelled.light_field));
+    if (previous.is_null())
+      metadata.erase("lfsp_segment");
+    else
+      metadata["lfsp_segment"] = previous;
     bundle.light_field = std::move(labelled.light_field);
     lfsp.labels = std::move(*labelled.labels);
     return lfsp;
@@ -260,6 +287,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
                            {"depth_labels", options.depth.labels},
                            {"focal_stack_slices", options.focal_stack_slices}};
   summary["metrics"] = metrics;
+  summary["output_bytes"] = OutputSizes(options.out);
   summary["timings"] = timings;
   summary["wall_seconds"] = std::chrono::duration<double>(Clock::now() - wall_start).count();
   cli::WriteJsonSummary(summary, options.out / "summary.json");

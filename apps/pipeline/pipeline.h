@@ -21,6 +21,7 @@ struct PipelineOptions {
   segment::LfspParams segment;
   std::string recolor;  // "" = none; see RecolorSpec in recolor_spec.h
   int focal_stack_slices = 5;
+  int views = 0;  // central N x N views to process; 0 = the well-lit ones (ChooseViews)
 };
 
 // What the run produced, for the report and the summary.

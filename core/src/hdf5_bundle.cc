@@ -187,6 +187,7 @@ H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compr
     chunk[0] = 1;
     chunk[1] = 1;
     properties.setChunk(static_cast<int>(chunk.size()), chunk.data());
+    properties.setShuffle();  // byte planes first: samples and labels compress far better
     properties.setDeflate(std::min(compression_level, 9));
   }
   return properties;
@@ -243,6 +244,10 @@ Bundle ReadBundle(const fs::path& path) {
   } catch (const H5::Exception& error) {
     ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
   }
+}
+
+BundleWriteOptions CompactBundleOptions(const LightField& light_field) {
+  return {light_field.metadata.contains("decode") ? SampleStorage::kUint16 : SampleStorage::kFloat32, 1};
 }
 
 void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOptions& options) {
@@ -305,7 +310,13 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
       if (!(bundle.labels->shape().nu == shape.nu && bundle.labels->shape().nv == shape.nv &&
             bundle.labels->shape().width == shape.width && bundle.labels->shape().height == shape.height))
         ThrowFileError(name, "labels shape does not match the light field");
-      H5::DataSet dataset = file.createDataSet("labels", H5::PredType::STD_I32LE, H5::DataSpace(4, ray_dims.data()),
+      // Stored as the smallest integer type that holds them (HDF5 converts back to int32 on reading).
+      const auto [lowest, highest] =
+          std::minmax_element(bundle.labels->data(), bundle.labels->data() + bundle.labels->size());
+      const H5::PredType& stored = *lowest >= 0 && *highest <= 65535        ? H5::PredType::STD_U16LE
+                                   : *lowest >= -32768 && *highest <= 32767 ? H5::PredType::STD_I16LE
+                                                                            : H5::PredType::STD_I32LE;
+      H5::DataSet dataset = file.createDataSet("labels", stored, H5::DataSpace(4, ray_dims.data()),
                                                ChunkedPerView(ray_dims, options.compression_level));
       dataset.write(bundle.labels->data(), H5::PredType::NATIVE_INT32);
     }

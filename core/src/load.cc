@@ -70,7 +70,7 @@ Bundle LoadLightField(const fs::path& path, const EslfOptions& eslf) {
 void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth) {
   const std::string extension = LowerExtension(path);
   if (extension == ".h5" || extension == ".hdf5") {
-    WriteBundle(bundle, path);
+    WriteBundle(bundle, path, CompactBundleOptions(bundle.light_field));
     return;
   }
   if (extension == ".png" || extension == ".tif" || extension == ".tiff") {

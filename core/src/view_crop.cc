@@ -1,6 +1,7 @@
 #include "lfsp/core/view_crop.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 #include "lfsp/core/error.h"
@@ -49,6 +50,72 @@ Labels CentralViews(const Labels& labels, int n) {
   Labels out(CroppedShape(labels.shape(), n));
   CopyCentralViews(labels, out);
   return out;
+}
+
+namespace {
+
+double MeanViewWeight(const LightField& light_field, ViewIndex view) {
+  const float* w = light_field.weights().ViewData(view);
+  const std::size_t count = light_field.shape().ViewPixels();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < count; ++i) sum += w[i];
+  return sum / static_cast<double>(count);
+}
+
+// The lowest mean weight over the ring of views at Chebyshev distance `ring` from the centre.
+double LeastRingWeight(const LightField& light_field, int ring) {
+  const ViewIndex centre = light_field.shape().Centre();
+  double least = 1e300;
+  for (int v = centre.v - ring; v <= centre.v + ring; ++v)
+    for (int u = centre.u - ring; u <= centre.u + ring; ++u)
+      if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) == ring)
+        least = std::min(least, MeanViewWeight(light_field, ViewIndex{u, v}));
+  return least;
+}
+
+}  // namespace
+
+ViewChoice ChooseViews(const LightField& light_field, int requested) {
+  const LightFieldShape& shape = light_field.shape();
+  ViewChoice choice;
+  choice.available = std::min(shape.nu, shape.nv);
+  if (requested > 0) {
+    CroppedShape(shape, requested);  // throws with the reason if it cannot be taken
+    choice.n = requested;
+    choice.reason = "--views " + std::to_string(requested);
+  } else if (!light_field.HasWeights()) {
+    choice.n = choice.available;
+    choice.reason = "all views (the light field has no weights)";
+  } else {
+    // Grow ring by ring from the centre while every view of the next ring is well lit.
+    const int parity = choice.available % 2;
+    choice.n = parity == 1 ? 1 : 2;
+    double least = parity == 1 ? MeanViewWeight(light_field, shape.Centre()) : 1.0;
+    for (int ring = (choice.n + 1) / 2; choice.n + 2 <= choice.available; ++ring) {
+      const double ring_weight = LeastRingWeight(light_field, ring);
+      if (ring_weight < kWellLitWeight) break;
+      least = std::min(least, ring_weight);
+      choice.n += 2;
+    }
+    choice.least_weight = least;
+    choice.reason = "central " + std::to_string(choice.n) + "x" + std::to_string(choice.n) + " of " +
+                    std::to_string(choice.available) + "x" + std::to_string(choice.available) +
+                    ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) +
+                    " (--views N to override)";
+  }
+  if (requested > 0 && light_field.HasWeights()) {
+    const int r0 = (choice.available - requested) / 2;
+    double least = 1e300;
+    for (int v = r0; v < r0 + requested; ++v)
+      for (int u = r0; u < r0 + requested; ++u) least = std::min(least, MeanViewWeight(light_field, ViewIndex{u, v}));
+    choice.least_weight = least;
+  }
+  return choice;
+}
+
+void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, int n) {
+  if (n != light_field.shape().nu || n != light_field.shape().nv) light_field = CentralViews(light_field, n);
+  if (labels && (n != labels->shape().nu || n != labels->shape().nv)) labels = CentralViews(*labels, n);
 }
 
 }  // namespace lfsp

@@ -23,8 +23,13 @@ enum class SampleStorage { kFloat32, kUint16, kUint8 };
 
 struct BundleWriteOptions {
   SampleStorage storage = SampleStorage::kFloat32;  // uint formats quantise: exact only for 8/16-bit data
-  int compression_level = 0;                        // gzip level 0-9; 0 keeps loading fastest
+  int compression_level = 0;                        // gzip level 0-9 (with byte shuffling); 0 keeps loading fastest
 };
+
+// What the commands write (decode, segment, recolor, pipeline): chunked by view, byte-shuffled and gzip-compressed
+// at level 1 (fast); samples as 16-bit when the light field was decoded from a sensor (10- or 12-bit data: a step
+// of 1.5e-5 loses nothing measurable), else as float32, losslessly.
+BundleWriteOptions CompactBundleOptions(const LightField& light_field);
 
 // Reads an lfsp bundle, or the old HCI dataset layout: lf.h5 with LF (uint8/float, nv x nu x H x W x 3) and
 // GT_DEPTH (depth per view, converted to centre-view disparity with the file's dH/focalLength/shift attributes),

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "lfsp/core/light_field.h"
 
 namespace lfsp {
@@ -10,5 +13,26 @@ namespace lfsp {
 // in both).
 LightField CentralViews(const LightField& light_field, int n);
 Labels CentralViews(const Labels& labels, int n);
+
+// Views are well lit when their mean weight (a lenslet decode's vignetting) is at least this: beyond it, the rays
+// sample the soft edge of the micro-images, where noise is amplified and the neighbouring micro-image is near.
+// It keeps the central 9x9 of an Illum decode (the next ring's dimmest view: 0.37) and 7x7 of an F01 (its dimmest
+// view 0.48); on noisy full-size F01 strips, 7x7 puts every strip's disparity within 0.012 px, 5x5 within 0.04.
+constexpr double kWellLitWeight = 0.4;
+
+// The views a stage should process: the central n x n, n the largest size of the light field's parity whose every
+// view is well lit (all views when the light field has no weights), or `requested` when it is > 0 (lfsp::Error if
+// it cannot be taken). `reason` says which, for logs and summaries.
+struct ViewChoice {
+  int n = 0;
+  int available = 0;
+  double least_weight = 1.0;  // the lowest mean weight among the chosen views (1 without weights)
+  std::string reason;
+};
+ViewChoice ChooseViews(const LightField& light_field, int requested = 0);
+
+// Keeps the central n x n views of a light field and of its labels in place (nothing is copied when n is already
+// the view count).
+void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, int n);
 
 }  // namespace lfsp

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "lfsp/core/hdf5_bundle.h"
+
+namespace lfsp::cli {
+
+// `--views N` (central N x N; 0 = chosen from the weights) on every command that takes a light field.
+void AddViewsOption(CLI::App* command, int& views);
+
+// Keeps the views a stage should process (ChooseViews) of the bundle's light field and labels, in place, logs the
+// choice naming `source`, and returns it for the summary.
+nlohmann::json SelectViews(Bundle& bundle, int requested, const std::string& source);
+
+}  // namespace lfsp::cli

@@ -1,0 +1,42 @@
+#include "lfsp/core/registration.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp {
+
+Shift2D MeasureShift(const cv::Mat& reference, const cv::Mat& moving, int margin) {
+  if (reference.type() != CV_32FC1 || moving.type() != CV_32FC1 || reference.size() != moving.size())
+    throw Error("measure shift: expected two single-channel float images of one size");
+  if (margin < 1 || 2 * margin + 2 >= std::min(reference.rows, reference.cols))
+    throw Error("measure shift: the margin leaves no pixels");
+  // Unknowns: dx, dy, gain - 1, offset. moving - reference = -gx dx - gy dy + reference (gain - 1) + offset.
+  cv::Matx44d normal = cv::Matx44d::zeros();
+  cv::Vec4d right(0, 0, 0, 0);
+  for (int y = margin; y < reference.rows - margin; ++y) {
+    const float* up = reference.ptr<float>(y - 1);
+    const float* row = reference.ptr<float>(y);
+    const float* down = reference.ptr<float>(y + 1);
+    const float* other = moving.ptr<float>(y);
+    for (int x = margin; x < reference.cols - margin; ++x) {
+      const cv::Vec4d a(-0.5 * (row[x + 1] - row[x - 1]), -0.5 * (down[x] - up[x]), row[x], 1.0);
+      const double b = other[x] - row[x];
+      normal += a * a.t();
+      right += a * b;
+    }
+  }
+  cv::Vec4d solution;
+  if (!cv::solve(normal, right, solution, cv::DECOMP_CHOLESKY))
+    throw Error("measure shift: the images hold no texture to register");
+  return {solution[0], solution[1]};
+}
+
+cv::Mat GreyOf(const cv::Mat& rgb) {
+  cv::Mat grey;
+  cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
+  return grey;
+}
+
+}  // namespace lfsp
