@@ -1,5 +1,7 @@
 #include "lfsp/core/hdf5_bundle.h"
 
+#include "hdf5_chunks.h"
+
 #include <H5Cpp.h>
 
 #include <algorithm>
@@ -224,7 +226,7 @@ Bundle ReadBundle(const fs::path& path) {
         ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
       CheckSpatialMatch(dims, shape, name + ": dataset weights");
       light_field.EnableWeights();
-      dataset.read(light_field.weights().data(), H5::PredType::NATIVE_FLOAT);
+      ReadSamplesAsFloat(dataset, light_field.weights().data(), light_field.weights().size(), name + ": weights");
     }
     if (file.nameExists("disparity")) {
       bundle.disparity = ReadDisparityDataset(file, shape, name);
@@ -266,22 +268,33 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
                                           static_cast<hsize_t>(shape.channels)};
     const H5::DataSpace lf_space(5, lf_dims.data());
     const H5::DSetCreatPropList lf_properties = ChunkedPerView(lf_dims, options.compression_level);
+    const std::size_t views = static_cast<std::size_t>(shape.nu) * static_cast<std::size_t>(shape.nv);
+    // One view per chunk: compressed in parallel when compressing (WriteViewChunks), else written in one call.
+    auto write = [&](H5::DataSet& dataset, const void* values, std::size_t element_size, const H5::PredType& memory,
+                     std::size_t chunk_elements, int rank) {
+      if (options.compression_level > 0)
+        WriteViewChunks(dataset.getId(), values, element_size, views, shape.nu, chunk_elements, rank,
+                        std::min(options.compression_level, 9), name);
+      else
+        dataset.write(values, memory);
+    };
+    const std::size_t view_samples = shape.ViewSamples();
     switch (options.storage) {
       case SampleStorage::kFloat32: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::IEEE_F32LE, lf_space, lf_properties);
-        dataset.write(light_field.data(), H5::PredType::NATIVE_FLOAT);
+        write(dataset, light_field.data(), sizeof(float), H5::PredType::NATIVE_FLOAT, view_samples, 5);
         break;
       }
       case SampleStorage::kUint16: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U16LE, lf_space, lf_properties);
-        dataset.write(Quantise<std::uint16_t>(light_field.data(), light_field.size(), 65535.0f).data(),
-                      H5::PredType::NATIVE_UINT16);
+        const auto quantised = Quantise<std::uint16_t>(light_field.data(), light_field.size(), 65535.0f);
+        write(dataset, quantised.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, view_samples, 5);
         break;
       }
       case SampleStorage::kUint8: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U8LE, lf_space, lf_properties);
-        dataset.write(Quantise<std::uint8_t>(light_field.data(), light_field.size(), 255.0f).data(),
-                      H5::PredType::NATIVE_UINT8);
+        const auto quantised = Quantise<std::uint8_t>(light_field.data(), light_field.size(), 255.0f);
+        write(dataset, quantised.data(), sizeof(std::uint8_t), H5::PredType::NATIVE_UINT8, view_samples, 5);
         break;
       }
     }
@@ -293,9 +306,18 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
 
     const std::vector<hsize_t> ray_dims(lf_dims.begin(), lf_dims.begin() + 4);
     if (light_field.HasWeights()) {
-      H5::DataSet dataset = file.createDataSet("weights", H5::PredType::IEEE_F32LE, H5::DataSpace(4, ray_dims.data()),
-                                               ChunkedPerView(ray_dims, options.compression_level));
-      dataset.write(light_field.weights().data(), H5::PredType::NATIVE_FLOAT);
+      // 16-bit like the samples when they are (weights lie in [0, 1]); float32 otherwise.
+      const bool sixteen = options.storage == SampleStorage::kUint16;
+      H5::DataSet dataset =
+          file.createDataSet("weights", sixteen ? H5::PredType::STD_U16LE : H5::PredType::IEEE_F32LE,
+                             H5::DataSpace(4, ray_dims.data()), ChunkedPerView(ray_dims, options.compression_level));
+      const Array4D<float>& weights = light_field.weights();
+      if (sixteen) {
+        const auto quantised = Quantise<std::uint16_t>(weights.data(), weights.size(), 65535.0f);
+        write(dataset, quantised.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4);
+      } else {
+        write(dataset, weights.data(), sizeof(float), H5::PredType::NATIVE_FLOAT, shape.ViewPixels(), 4);
+      }
     }
     if (bundle.disparity) {
       const DisparityMap& disparity = *bundle.disparity;
@@ -313,12 +335,23 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
       // Stored as the smallest integer type that holds them (HDF5 converts back to int32 on reading).
       const auto [lowest, highest] =
           std::minmax_element(bundle.labels->data(), bundle.labels->data() + bundle.labels->size());
-      const H5::PredType& stored = *lowest >= 0 && *highest <= 65535        ? H5::PredType::STD_U16LE
-                                   : *lowest >= -32768 && *highest <= 32767 ? H5::PredType::STD_I16LE
-                                                                            : H5::PredType::STD_I32LE;
+      const std::int32_t* labels = bundle.labels->data();
+      const std::size_t count = bundle.labels->size();
+      const bool unsigned16 = *lowest >= 0 && *highest <= 65535;
+      const bool signed16 = !unsigned16 && *lowest >= -32768 && *highest <= 32767;
+      const H5::PredType& stored =
+          unsigned16 ? H5::PredType::STD_U16LE : (signed16 ? H5::PredType::STD_I16LE : H5::PredType::STD_I32LE);
       H5::DataSet dataset = file.createDataSet("labels", stored, H5::DataSpace(4, ray_dims.data()),
                                                ChunkedPerView(ray_dims, options.compression_level));
-      dataset.write(bundle.labels->data(), H5::PredType::NATIVE_INT32);
+      if (options.compression_level > 0 && unsigned16) {
+        const std::vector<std::uint16_t> narrow(labels, labels + count);
+        write(dataset, narrow.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4);
+      } else if (options.compression_level > 0 && signed16) {
+        const std::vector<std::int16_t> narrow(labels, labels + count);
+        write(dataset, narrow.data(), sizeof(std::int16_t), H5::PredType::NATIVE_INT16, shape.ViewPixels(), 4);
+      } else {
+        write(dataset, labels, sizeof(std::int32_t), H5::PredType::NATIVE_INT32, shape.ViewPixels(), 4);
+      }
     }
     file.close();
   } catch (const H5::Exception& error) {

@@ -55,13 +55,30 @@ void LensletGrid::Nearest(double x, double y, int& i, int& j) const {
 
 cv::Mat LensLabels(const LensletGrid& grid) {
   cv::Mat labels(grid.sensor_height, grid.sensor_width, CV_8U);
+  // Nearest() per pixel, with the rotation computed once and the lattice coordinates stepped along each row.
+  const double c = std::cos(grid.rotation), s = std::sin(grid.rotation);
+  const double along_step = c / grid.spacing_x, across_step = -s / grid.spacing_y;
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < labels.rows; ++y) {
     auto* row = labels.ptr<std::uint8_t>(y);
-    for (int x = 0; x < labels.cols; ++x) {
-      int i = 0, j = 0;
-      grid.Nearest(x, y, i, j);
-      row[x] = static_cast<std::uint8_t>((i & 3) + 4 * (j & 1));
+    const double dy = y - grid.origin_y, dx0 = -grid.origin_x;
+    double along = (c * dx0 + s * dy) / grid.spacing_x;
+    double across = (-s * dx0 + c * dy) / grid.spacing_y;
+    for (int x = 0; x < labels.cols; ++x, along += along_step, across += across_step) {
+      const int j0 = static_cast<int>(std::floor(across));
+      int best_i = 0, best_j = j0;
+      double best = std::numeric_limits<double>::max();
+      for (int j = j0; j <= j0 + 1; ++j) {
+        const double shift = 0.5 * grid.Shift(j);
+        const double i = std::nearbyint(along - shift);
+        const double ea = (along - i - shift) * grid.spacing_x, eb = (across - j) * grid.spacing_y;
+        if (ea * ea + eb * eb < best) {
+          best = ea * ea + eb * eb;
+          best_i = static_cast<int>(i);
+          best_j = j;
+        }
+      }
+      row[x] = static_cast<std::uint8_t>((best_i & 3) + 4 * (best_j & 1));
     }
   }
   return labels;

@@ -1,0 +1,57 @@
+#include "hdf5_chunks.h"
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp {
+namespace {
+
+// HDF5's shuffle filter: byte k of every element, then byte k + 1, ... (all byte planes in turn).
+std::vector<std::uint8_t> Shuffled(const std::uint8_t* bytes, std::size_t elements, std::size_t element_size) {
+  std::vector<std::uint8_t> out(elements * element_size);
+  for (std::size_t b = 0; b < element_size; ++b) {
+    std::uint8_t* plane = out.data() + b * elements;
+    for (std::size_t i = 0; i < elements; ++i) plane[i] = bytes[i * element_size + b];
+  }
+  return out;
+}
+
+}  // namespace
+
+void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, std::size_t views, int nu,
+                     std::size_t chunk_elements, int rank, int level, const std::string& name) {
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  const std::size_t chunk_bytes = chunk_elements * element_size;
+  // Compressed in parallel a batch at a time (bounded memory), written in order by one thread (HDF5 is not
+  // thread-safe).
+  const std::size_t batch = 16;
+  std::vector<std::vector<std::uint8_t>> compressed(batch);
+  std::vector<int> failed(batch, 0);
+  for (std::size_t first = 0; first < views; first += batch) {
+    const std::size_t count = std::min(batch, views - first);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::vector<std::uint8_t> shuffled =
+          Shuffled(bytes + (first + k) * chunk_bytes, chunk_elements, element_size);
+      uLongf size = compressBound(static_cast<uLong>(shuffled.size()));
+      compressed[k].resize(size);
+      failed[k] =
+          compress2(compressed[k].data(), &size, shuffled.data(), static_cast<uLong>(shuffled.size()), level) != Z_OK;
+      compressed[k].resize(size);
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      if (failed[k]) ThrowFileError(name, "compressing a view failed");
+      std::vector<hsize_t> offset(static_cast<std::size_t>(rank), 0);
+      offset[0] = static_cast<hsize_t>((first + k) / static_cast<std::size_t>(nu));
+      offset[1] = static_cast<hsize_t>((first + k) % static_cast<std::size_t>(nu));
+      if (H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), compressed[k].size(), compressed[k].data()) < 0)
+        ThrowFileError(name, "HDF5 chunk write failed");
+    }
+  }
+}
+
+}  // namespace lfsp
