@@ -119,18 +119,6 @@ depth::DepthOptions WithDisparityRange(depth::DepthOptions options, const Bundle
   return options;
 }
 
-}  // namespace
-
-fs::path DefaultSample() {
-  const char* configured = std::getenv("LFSP_SAMPLES_DIR");
-  const fs::path samples = configured ? fs::path(configured) : fs::path(LFSP_SOURCE_SAMPLES_DIR);
-  for (const char* candidate : {"mini-illum/capture.LFR", "ideal/ideal.h5"}) {
-    std::error_code ec;
-    if (fs::exists(samples / candidate, ec)) return samples / candidate;
-  }
-  throw Error(samples.string() + ": no bundled sample found (regenerate with tools/make_samples, or pass an INPUT)");
-}
-
 // Bytes of every file the run wrote (relative paths), and their total.
 nlohmann::ordered_json OutputSizes(const fs::path& folder) {
   nlohmann::ordered_json sizes = nlohmann::ordered_json::object();
@@ -146,6 +134,18 @@ nlohmann::ordered_json OutputSizes(const fs::path& folder) {
   }
   sizes["total"] = total;
   return sizes;
+}
+
+}  // namespace
+
+fs::path DefaultSample() {
+  const char* configured = std::getenv("LFSP_SAMPLES_DIR");
+  const fs::path samples = configured ? fs::path(configured) : fs::path(LFSP_SOURCE_SAMPLES_DIR);
+  for (const char* candidate : {"mini-illum/capture.LFR", "ideal/ideal.h5"}) {
+    std::error_code ec;
+    if (fs::exists(samples / candidate, ec)) return samples / candidate;
+  }
+  throw Error(samples.string() + ": no bundled sample found (regenerate with tools/make_samples, or pass an INPUT)");
 }
 
 PipelineResult RunPipeline(const PipelineOptions& options) {
@@ -165,18 +165,21 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
 
   const bool raw_capture = decode::LooksLikeLytroFile(input);
   Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
-    if (!raw_capture) return LoadLightField(input);
-    decode::CaptureDecodeOptions decode_options;
-    decode_options.white_images = options.white_images;
-    decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
     Bundle out;
-    out.light_field = std::move(decoded.light_field);
-    summary["decode"] = decoded.summary;
-    AttachSimulatorGroundTruth(input, out);
+    if (raw_capture) {
+      decode::CaptureDecodeOptions decode_options;
+      decode_options.white_images = options.white_images;
+      decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
+      out.light_field = std::move(decoded.light_field);
+      summary["decode"] = decoded.summary;
+      AttachSimulatorGroundTruth(input, out);
+    } else {
+      out = LoadLightField(input);
+    }
+    // The light field is stored once, in segmentation.h5, after the views to process are chosen.
+    summary["views"] = cli::SelectViews(out, options.views, input.string());
     return out;
   });
-  // Stored once, in segmentation.h5, after the views to process are chosen.
-  summary["views"] = cli::SelectViews(bundle, options.views, input.string());
   const LightField& light_field = bundle.light_field;
   summary["light_field"] = ToString(light_field.shape());
 
