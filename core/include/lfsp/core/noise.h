@@ -7,8 +7,9 @@ namespace lfsp {
 // Standard deviation of white noise in an RGB or grey image (its grey version; sample units), after Immerkaer (Fast
 // noise variance estimation, CVIU 1996): the response to a 3x3 mask that cancels any plane, here its median absolute
 // value, which texture inflates less than the mean. A clean view reads about 0.002-0.003 (antinous 0.003, a
-// simulated Illum capture at 6300 photons at white 0.002), the same capture at 180 photons 0.022. Depth and
-// segmentation use it to decide how much to smooth noisy views.
+// simulated Illum capture at 6300 photons at white 0.002), the same capture at 180 photons 0.022 (figures from
+// before decodes applied the colour matrix in linear mode). Segmentation uses it to decide how much to smooth noisy
+// views; depth uses EstimateChannelNoiseSigma below.
 double EstimateNoiseSigma(const cv::Mat& image);
 
 // The same estimate on each channel of an RGB image, the largest of the three. A colour matrix with large
