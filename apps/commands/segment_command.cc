@@ -80,8 +80,7 @@ void RunSegment(const SegmentCommandOptions& options) {
   // and the parameters in the metadata (for the refocus sweep).
   Bundle labelled;
   labelled.light_field = std::move(bundle.light_field);
-  labelled.light_field.metadata["lfsp_segment"] = {{"parameters", segment::ToJson(options.params)},
-                                                   {"disparity", disparity_source}};
+  labelled.light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.params, disparity_source);
   labelled.disparity = disparity;
   labelled.labels = result.labels;
   WriteBundle(labelled, out, CompactBundleOptions(labelled.light_field));

@@ -200,14 +200,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     labelled.disparity = depth_result.disparity;
     labelled.labels = std::move(lfsp.labels);
     // As `lfsp segment` writes it: the parameters travel with the labels (evaluate re-runs the refocus sweep).
-    nlohmann::json& metadata = labelled.light_field.metadata;
-    const nlohmann::json previous = metadata.value("lfsp_segment", nlohmann::json());
-    metadata["lfsp_segment"] = {{"parameters", segment::ToJson(options.segment)}, {"disparity", "lfsp depth"}};
+    labelled.light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.segment, "lfsp depth");
     WriteBundle(labelled, options.out / "segmentation.h5", CompactBundleOptions(labelled.light_field));
-    if (previous.is_null())
-      metadata.erase("lfsp_segment");
-    else
-      metadata["lfsp_segment"] = previous;
     bundle.light_field = std::move(labelled.light_field);
     lfsp.labels = std::move(*labelled.labels);
     return lfsp;

@@ -249,7 +249,7 @@ Bundle ReadBundle(const fs::path& path) {
 }
 
 BundleWriteOptions CompactBundleOptions(const LightField& light_field) {
-  return {light_field.metadata.contains("decode") ? SampleStorage::kUint16 : SampleStorage::kFloat32, 1};
+  return {DecodedFromSensor(light_field) ? SampleStorage::kUint16 : SampleStorage::kFloat32, 1};
 }
 
 void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOptions& options) {

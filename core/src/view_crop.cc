@@ -52,8 +52,6 @@ Labels CentralViews(const Labels& labels, int n) {
   return out;
 }
 
-namespace {
-
 double MeanViewWeight(const LightField& light_field, ViewIndex view) {
   const float* w = light_field.weights().ViewData(view);
   const std::size_t count = light_field.shape().ViewPixels();
@@ -62,13 +60,15 @@ double MeanViewWeight(const LightField& light_field, ViewIndex view) {
   return sum / static_cast<double>(count);
 }
 
-// The lowest mean weight over the ring of views at Chebyshev distance `ring` from the centre.
-double LeastRingWeight(const LightField& light_field, int ring) {
+namespace {
+
+// The lowest mean weight over the views at Chebyshev distance `from` .. `to` from the centre.
+double LeastWeight(const LightField& light_field, int from, int to) {
   const ViewIndex centre = light_field.shape().Centre();
-  double least = 1e300;
-  for (int v = centre.v - ring; v <= centre.v + ring; ++v)
-    for (int u = centre.u - ring; u <= centre.u + ring; ++u)
-      if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) == ring)
+  double least = 1.0;
+  for (int v = centre.v - to; v <= centre.v + to; ++v)
+    for (int u = centre.u - to; u <= centre.u + to; ++u)
+      if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) >= from)
         least = std::min(least, MeanViewWeight(light_field, ViewIndex{u, v}));
   return least;
 }
@@ -88,28 +88,18 @@ ViewChoice ChooseViews(const LightField& light_field, int requested) {
     choice.reason = "all views (the light field has no weights)";
   } else {
     // Grow ring by ring from the centre while every view of the next ring is well lit.
-    const int parity = choice.available % 2;
-    choice.n = parity == 1 ? 1 : 2;
-    double least = parity == 1 ? MeanViewWeight(light_field, shape.Centre()) : 1.0;
-    for (int ring = (choice.n + 1) / 2; choice.n + 2 <= choice.available; ++ring) {
-      const double ring_weight = LeastRingWeight(light_field, ring);
-      if (ring_weight < kWellLitWeight) break;
-      least = std::min(least, ring_weight);
+    choice.n = choice.available % 2 == 1 ? 1 : 2;
+    while (choice.n + 2 <= choice.available) {
+      const int ring = (choice.n + 1) / 2;
+      if (LeastWeight(light_field, ring, ring) < kWellLitWeight) break;
       choice.n += 2;
     }
-    choice.least_weight = least;
     choice.reason = "central " + std::to_string(choice.n) + "x" + std::to_string(choice.n) + " of " +
                     std::to_string(choice.available) + "x" + std::to_string(choice.available) +
                     ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) +
                     " (--views N to override)";
   }
-  if (requested > 0 && light_field.HasWeights()) {
-    const int r0 = (choice.available - requested) / 2;
-    double least = 1e300;
-    for (int v = r0; v < r0 + requested; ++v)
-      for (int u = r0; u < r0 + requested; ++u) least = std::min(least, MeanViewWeight(light_field, ViewIndex{u, v}));
-    choice.least_weight = least;
-  }
+  if (light_field.HasWeights()) choice.least_weight = LeastWeight(light_field, 0, (choice.n - 1) / 2);
   return choice;
 }
 

@@ -196,22 +196,10 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
 }
 
 float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& m) {
-  auto brightest_channel = [&](const float* in) {
-    return std::max({m[0] * in[0] + m[1] * in[1] + m[2] * in[2], m[3] * in[0] + m[4] * in[1] + m[5] * in[2],
-                     m[6] * in[0] + m[7] * in[1] + m[8] * in[2]});
-  };
-  // Pass 1: the maximum, which bounds the histogram of pass 2.
-  float top = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : top)
-  for (int y = 0; y < rgb.rows; ++y) {
-    const float* p = rgb.ptr<float>(y);
-    const float* w = grey_white.ptr<float>(y);
-    for (int x = 0; x < rgb.cols; ++x)
-      if (w[x] >= 0.5f) top = std::max(top, brightest_channel(p + 3 * x));
-  }
-  if (!(top > 0.0f)) return top;
-  // Pass 2: the kBrightQuantile level of the brightest channel, from a histogram.
-  constexpr int kBins = 16384;
+  // One pass: a histogram of the brightest channel over [0, kTop) (devignetted sensor values stay far below it;
+  // anything above falls in the last bin), then its kBrightQuantile level.
+  constexpr float kTop = 8.0f;
+  constexpr int kBins = 32768;  // steps of 2.4e-4
   std::vector<long long> histogram(kBins, 0);
   long long lit = 0;
 #pragma omp parallel reduction(+ : lit)
@@ -223,20 +211,25 @@ float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std:
       const float* w = grey_white.ptr<float>(y);
       for (int x = 0; x < rgb.cols; ++x) {
         if (w[x] < 0.5f) continue;
-        const float value = std::max(0.0f, brightest_channel(p + 3 * x));
-        ++local[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(value / top * kBins)))];
+        const float* in = p + 3 * x;
+        const float brightest =
+            std::max({m[0] * in[0] + m[1] * in[1] + m[2] * in[2], m[3] * in[0] + m[4] * in[1] + m[5] * in[2],
+                      m[6] * in[0] + m[7] * in[1] + m[8] * in[2]});
+        const int bin = static_cast<int>(std::clamp(brightest, 0.0f, kTop) * (kBins / kTop));
+        ++local[static_cast<std::size_t>(std::min(kBins - 1, bin))];
         ++lit;
       }
     }
 #pragma omp critical
     for (int k = 0; k < kBins; ++k) histogram[static_cast<std::size_t>(k)] += local[static_cast<std::size_t>(k)];
   }
+  if (lit == 0) return 0.0f;
   const auto wanted = static_cast<long long>(kBrightQuantile * static_cast<double>(lit));
   long long count = 0;
   int bin = 0;
   while (bin < kBins - 1 && count + histogram[static_cast<std::size_t>(bin)] < wanted)
     count += histogram[static_cast<std::size_t>(bin++)];
-  return (static_cast<float>(bin) + 1.0f) * top / kBins;
+  return (static_cast<float>(bin) + 1.0f) * (kTop / kBins);
 }
 
 void SoftenAndEncode(LightField& light_field, float alpha, bool srgb) {

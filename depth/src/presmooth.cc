@@ -11,11 +11,11 @@ double PresmoothSigmaForNoise(double noise_sigma) {
 
 int ExcludedRingFor(const LightField& light_field) {
   const LightFieldShape& shape = light_field.shape();
-  return light_field.metadata.contains("decode") && std::min(shape.nu, shape.nv) >= 5 ? 1 : 0;
+  return DecodedFromSensor(light_field) && std::min(shape.nu, shape.nv) >= 5 ? 1 : 0;
 }
 
 double PresmoothFloorFor(const LightField& light_field) {
-  return light_field.metadata.contains("decode") ? kLensletPresmoothFloor : 0.0;
+  return DecodedFromSensor(light_field) ? kLensletPresmoothFloor : 0.0;
 }
 
 LightField Presmoothed(const LightField& light_field, double sigma) {

@@ -23,6 +23,10 @@ void ReadField(const nlohmann::json& json, const char* name, T& value, const std
 
 }  // namespace
 
+nlohmann::json SegmentationRecord(const LfspParams& params, const std::string& disparity_source) {
+  return {{"parameters", ToJson(params)}, {"disparity", disparity_source}};
+}
+
 nlohmann::json ToJson(const LfspParams& p) {
   return {{"size", p.size},
           {"lambda_p", p.lambda_p},

@@ -143,6 +143,50 @@ TEST(Hdf5Bundle, DisparityLabelsWeightsAndTransferSurvive) {
   EXPECT_TRUE(std::equal(labels.data(), labels.data() + labels.size(), read.labels->data()));
 }
 
+// The commands' compact bundles: view chunks deflated in parallel and written whole, 16-bit samples and weights for a
+// sensor decode, labels narrowed to the smallest type that holds them. HDF5 must read back what was meant.
+TEST(Hdf5Bundle, CompactBundlesReadBackWhatWasWritten) {
+  TempDir dir;
+  Bundle bundle;
+  bundle.light_field = LightField(LightFieldShape{3, 3, 5, 7, 3});
+  bundle.light_field.metadata["decode"] = {{"source", "capture.LFR"}};  // a sensor decode: 16-bit storage
+  bundle.light_field.EnableWeights();
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (std::size_t i = 0; i < bundle.light_field.size(); ++i) bundle.light_field.data()[i] = unit(random);
+  for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+    bundle.light_field.weights().data()[i] = unit(random);
+  const BundleWriteOptions compact = CompactBundleOptions(bundle.light_field);
+  EXPECT_EQ(compact.storage, SampleStorage::kUint16);
+  EXPECT_GT(compact.compression_level, 0);
+  // Labels in each of the three stored types: uint16, int16 (unlabelled rays are -1), int32.
+  for (const std::int32_t offset : {0, -1, 100000}) {
+    Labels labels(bundle.light_field.shape());
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      labels.data()[i] = (i % 5 == 0 && offset < 0) ? -1 : static_cast<std::int32_t>(i % 300) + std::max(offset, 0);
+    bundle.labels = labels;
+    const std::filesystem::path path = dir / ("compact" + std::to_string(offset) + ".h5");
+    WriteBundle(bundle, path, compact);
+    const Bundle read = ReadBundle(path);
+    ASSERT_EQ(read.light_field.shape(), bundle.light_field.shape());
+    for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
+      ASSERT_NEAR(read.light_field.data()[i], bundle.light_field.data()[i], 0.5f / 65535.0f + 1e-7f) << i;
+    ASSERT_TRUE(read.light_field.HasWeights());
+    for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+      ASSERT_NEAR(read.light_field.weights().data()[i], bundle.light_field.weights().data()[i],
+                  0.5f / 65535.0f + 1e-7f);
+    ASSERT_TRUE(read.labels.has_value());
+    for (std::size_t i = 0; i < labels.size(); ++i) ASSERT_EQ(read.labels->data()[i], labels.data()[i]) << offset;
+  }
+  // Without the decoder's record the samples stay float32, exactly.
+  bundle.light_field.metadata.erase("decode");
+  const std::filesystem::path exact = dir / "exact.h5";
+  WriteBundle(bundle, exact, CompactBundleOptions(bundle.light_field));
+  const Bundle read = ReadBundle(exact);
+  for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
+    ASSERT_EQ(read.light_field.data()[i], bundle.light_field.data()[i]);
+}
+
 TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
   TempDir temp;
   Bundle bundle;

@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
 #include "lfsp/core/error.h"
+#include "lfsp/core/registration.h"
 
 namespace lfsp {
 namespace {
@@ -49,6 +54,56 @@ TEST(CentralViews, RefusesCropsWithoutACommonCentre) {
   EXPECT_THROW(CentralViews(full, 7), Error);
   EXPECT_THROW(CentralViews(full, 0), Error);
   EXPECT_NO_THROW(CentralViews(full, 5));
+}
+
+// A 9x9 light field whose views' weight falls with their Chebyshev ring from the centre: 1.0, 0.9, 0.7, 0.45, 0.2.
+LightField RingWeighted() {
+  LightField light_field(LightFieldShape{9, 9, 4, 4, 3});
+  light_field.EnableWeights();
+  const float ring_weight[5] = {1.0f, 0.9f, 0.7f, 0.45f, 0.2f};
+  for (int v = 0; v < 9; ++v)
+    for (int u = 0; u < 9; ++u) {
+      float* w = light_field.weights().ViewData({u, v});
+      std::fill(w, w + 16, ring_weight[std::max(std::abs(u - 4), std::abs(v - 4))]);
+    }
+  return light_field;
+}
+
+TEST(ChooseViews, KeepsTheLargestSquareWhoseViewsAreAllWellLit) {
+  const LightField light_field = RingWeighted();
+  const ViewChoice automatic = ChooseViews(light_field);
+  EXPECT_EQ(automatic.n, 7);  // ring 3 (0.45) is kept, ring 4 (0.2) is not
+  EXPECT_EQ(automatic.available, 9);
+  EXPECT_FLOAT_EQ(automatic.least_weight, 0.45);
+  const ViewChoice requested = ChooseViews(light_field, 3);
+  EXPECT_EQ(requested.n, 3);
+  EXPECT_FLOAT_EQ(requested.least_weight, 0.9);
+  EXPECT_THROW(ChooseViews(light_field, 4), Error);
+  EXPECT_EQ(ChooseViews(LightField(LightFieldShape{5, 5, 4, 3, 3})).n, 5) << "without weights every view is kept";
+}
+
+TEST(KeepCentralViews, CropsLightFieldAndLabelsInPlace) {
+  LightField light_field = RingWeighted();
+  std::optional<Labels> labels = Labels(light_field.shape(), 3);
+  KeepCentralViews(light_field, labels, 5);
+  EXPECT_EQ(light_field.shape().nu, 5);
+  EXPECT_EQ(labels->shape().nu, 5);
+  EXPECT_FLOAT_EQ(MeanViewWeight(light_field, {0, 0}), 0.7);  // was ring 2
+}
+
+TEST(MeasureShift, RecoversASubPixelTranslation) {
+  cv::Mat reference(64, 64, CV_32F), moving(64, 64, CV_32F);
+  auto pattern = [](double x, double y) {
+    return static_cast<float>(0.5 + 0.2 * std::sin(0.3 * x) * std::cos(0.23 * y));
+  };
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      reference.at<float>(y, x) = pattern(x, y);
+      moving.at<float>(y, x) = 1.1f * pattern(x - 0.12, y + 0.07) + 0.02f;  // shifted, with a gain and an offset
+    }
+  const Shift2D shift = MeasureShift(reference, moving, 4);
+  EXPECT_NEAR(shift.dx, 0.12, 0.01);
+  EXPECT_NEAR(shift.dy, -0.07, 0.01);
 }
 
 }  // namespace

@@ -75,14 +75,6 @@ LightField Decode(const Capture& capture, decode::ColourMode colour) {
   return decode::DecodeCaptureFile(capture.file, options).light_field;
 }
 
-double MeanWeight(const LightField& light_field, ViewIndex view) {
-  const float* weights = light_field.weights().ViewData(view);
-  const std::size_t count = light_field.shape().ViewPixels();
-  double sum = 0.0;
-  for (std::size_t i = 0; i < count; ++i) sum += weights[i];
-  return sum / static_cast<double>(count);
-}
-
 void CheckRegistration(const LightField& decoded, const LightField& truth, const std::string& what) {
   ASSERT_EQ(decoded.shape(), truth.shape());
   double worst = 0.0;
@@ -90,7 +82,7 @@ void CheckRegistration(const LightField& decoded, const LightField& truth, const
   for (int v = 0; v < truth.shape().nv; ++v)
     for (int u = 0; u < truth.shape().nu; ++u) {
       const ViewIndex view{u, v};
-      if (MeanWeight(truth, view) <= 0.6) continue;
+      if (MeanViewWeight(truth, view) <= 0.6) continue;
       const Shift2D shift = MeasureShift(GreyOf(truth.View(view)), GreyOf(decoded.View(view)), 20);
       worst = std::max({worst, std::abs(shift.dx), std::abs(shift.dy)});
       ++checked;

@@ -98,6 +98,10 @@ class LightField : public Array4D<float> {
   Array4D<float> weights_;
 };
 
+// Whether the light field was decoded from a lenslet sensor (the decoder records itself in metadata["decode"]): its
+// samples then carry resampled sensor noise, and at most 12 bits of data.
+inline bool DecodedFromSensor(const LightField& light_field) { return light_field.metadata.contains("decode"); }
+
 // Label per ray (int32, same layout, one channel); -1 = unlabelled.
 class Labels : public Array4D<std::int32_t> {
  public:

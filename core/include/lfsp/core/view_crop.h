@@ -20,6 +20,9 @@ Labels CentralViews(const Labels& labels, int n);
 // view 0.48); on noisy full-size F01 strips, 7x7 puts every strip's disparity within 0.012 px, 5x5 within 0.04.
 constexpr double kWellLitWeight = 0.4;
 
+// The mean weight of one view (the light field must have weights).
+double MeanViewWeight(const LightField& light_field, ViewIndex view);
+
 // The views a stage should process: the central n x n, n the largest size of the light field's parity whose every
 // view is well lit (all views when the light field has no weights), or `requested` when it is > 0 (lfsp::Error if
 // it cannot be taken). `reason` says which, for logs and summaries.

@@ -48,6 +48,9 @@ struct LfspParams {
 double PresmoothForNoise(double noise_sigma);
 
 nlohmann::json ToJson(const LfspParams& params);
+// What a segmentation bundle records in metadata["lfsp_segment"] (read back by `lfsp evaluate segmentation`): the
+// parameters and where the disparity came from.
+nlohmann::json SegmentationRecord(const LfspParams& params, const std::string& disparity_source);
 // Reads the fields present in `json` over the defaults; throws lfsp::Error naming `where` on a bad value.
 LfspParams ParamsFromJson(const nlohmann::json& json, const std::string& where = "parameters");
 // Throws lfsp::Error naming the parameter when a value is out of range.
