@@ -12,53 +12,13 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lattice.h"
 #include "lfsp/decode/lenslet_grid.h"
 
 namespace lfsp::decode {
 namespace {
 
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
-
-// The lattice while fitting: lens (i, j) of rows counted from the first lens found (row 0 unshifted).
-struct Lattice {
-  double rotation = 0.0;
-  double sx = 0.0;
-  double sy = 0.0;
-  double ox = 0.0;
-  double oy = 0.0;
-
-  static int Shift(int j) { return ((j % 2) + 2) % 2; }
-  void Predict(int i, int j, double& x, double& y) const {
-    const double a = (i + 0.5 * Shift(j)) * sx, b = j * sy;
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    x = ox + c * a - s * b;
-    y = oy + s * a + c * b;
-  }
-  // Lattice coordinates (a in pitches along the row, b in rows) of a sensor point.
-  void Coordinates(double x, double y, double& a, double& b) const {
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    const double dx = x - ox, dy = y - oy;
-    a = (c * dx + s * dy) / sx;
-    b = (-s * dx + c * dy) / sy;
-  }
-  void Nearest(double x, double y, int& i, int& j) const {
-    double a = 0.0, b = 0.0;
-    Coordinates(x, y, a, b);
-    double best = std::numeric_limits<double>::max();
-    const int j0 = static_cast<int>(std::floor(b));
-    for (int jj = j0; jj <= j0 + 1; ++jj) {
-      const int ii = static_cast<int>(std::lround(a - 0.5 * Shift(jj)));
-      double px = 0.0, py = 0.0;
-      Predict(ii, jj, px, py);
-      const double d = (px - x) * (px - x) + (py - y) * (py - y);
-      if (d < best) {
-        best = d;
-        i = ii;
-        j = jj;
-      }
-    }
-  }
-};
 
 struct Measurement {
   int i = 0;
@@ -271,43 +231,8 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
   std::vector<Measurement> measurements;
   for (const int reach : {3, 12, 48, -1}) measurements = MeasureAndFit(grey_white, options, reach, lattice);
 
-  // 3. Index as the camera does: the lens nearest the optical axis sits in an unshifted row; lens (0, 0) is the
-  //    top-left lens whose micro-image lies wholly on the sensor.
-  int axis_i = 0, axis_j = 0;
-  lattice.Nearest(guess.axis_x, guess.axis_y, axis_i, axis_j);
-  LensletGrid grid;
-  grid.spacing_x = lattice.sx;
-  grid.spacing_y = lattice.sy;
-  grid.rotation = lattice.rotation;
-  lattice.Predict(axis_i, axis_j, grid.origin_x, grid.origin_y);
-  grid.row_shift = 0;
-  grid.sensor_width = grey_white.cols;
-  grid.sensor_height = grey_white.rows;
-  const double edge = 0.5 * grid.spacing_x;
-  auto inside = [&](int i, int j) {
-    double x = 0.0, y = 0.0;
-    grid.Centre(i, j, x, y);
-    return x >= edge && y >= edge && x <= grid.sensor_width - 1 - edge && y <= grid.sensor_height - 1 - edge;
-  };
-  const int limit = static_cast<int>(std::max(grid.sensor_width, grid.sensor_height) / grid.spacing_y) + 4;
-  auto both_rows = [&](int i) { return inside(i, 0) && inside(i, 1); };
-  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-  while (both_rows(i0 - 1) && i0 > -limit) --i0;
-  while (both_rows(i1 + 1) && i1 < limit) ++i1;
-  auto row_inside = [&](int j) { return inside(i0, j) && inside(i1, j); };
-  while (row_inside(j0 - 1) && j0 > -limit) --j0;
-  while (row_inside(j1 + 1) && j1 < limit) ++j1;
-  double first_x = 0.0, first_y = 0.0;
-  grid.Centre(i0, j0, first_x, first_y);
-  grid.row_shift = ((j0 % 2) + 2) % 2;
-  grid.origin_x = first_x;
-  grid.origin_y = first_y;
-  if (grid.Shift(0) == 1) {
-    grid.origin_x -= 0.5 * grid.spacing_x * std::cos(grid.rotation);
-    grid.origin_y -= 0.5 * grid.spacing_x * std::sin(grid.rotation);
-  }
-  grid.columns = i1 - i0 + 1;
-  grid.rows = j1 - j0 + 1;
+  // 3. Index as the camera does (lens nearest the optical axis in an unshifted row, lens (0, 0) top-left).
+  LensletGrid grid = GridFromLattice(lattice, guess.axis_x, guess.axis_y, grey_white.cols, grey_white.rows);
 
   GridEstimate estimate;
   double sum_squares = 0.0;
@@ -315,11 +240,7 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
     MeasuredCentre centre;
     double lx = 0.0, ly = 0.0;
     lattice.Predict(m.i, m.j, lx, ly);
-    centre.j = m.j - axis_j - j0;
-    // Along-row lattice coordinate in the final grid, rounded to the lens index.
-    const double c = std::cos(grid.rotation), s = std::sin(grid.rotation);
-    const double along = (c * (lx - grid.origin_x) + s * (ly - grid.origin_y)) / grid.spacing_x;
-    centre.i = static_cast<int>(std::lround(along - 0.5 * grid.Shift(centre.j)));
+    grid.Nearest(lx, ly, centre.i, centre.j);
     centre.x = m.x;
     centre.y = m.y;
     centre.inlier = m.inlier;
@@ -329,9 +250,9 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
     }
     estimate.centres.push_back(centre);
   }
+  grid.fit_method = "white-image centroids";
   grid.lenses_measured = static_cast<int>(measurements.size());
   grid.rms_residual = grid.lenses_used > 0 ? std::sqrt(sum_squares / grid.lenses_used) : 0.0;
-  if (grid.columns < 2 || grid.rows < 2) throw Error("lenslet grid: fewer than 2x2 usable micro-lenses");
   estimate.grid = grid;
   return estimate;
 }

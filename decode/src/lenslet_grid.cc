@@ -91,7 +91,8 @@ nlohmann::json LensletGrid::ToJson() const {
           {"columns", columns},           {"rows", rows},
           {"sensor_width", sensor_width}, {"sensor_height", sensor_height},
           {"rms_residual", rms_residual}, {"lenses_measured", lenses_measured},
-          {"lenses_used", lenses_used}};
+          {"lenses_used", lenses_used},   {"fit_method", fit_method},
+          {"blocks", blocks},             {"blocks_used", blocks_used}};
 }
 
 LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string& source) {
@@ -110,6 +111,9 @@ LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string&
   grid.rms_residual = json.value("rms_residual", 0.0);
   grid.lenses_measured = json.value("lenses_measured", 0);
   grid.lenses_used = json.value("lenses_used", 0);
+  grid.fit_method = json.value("fit_method", std::string());
+  grid.blocks = json.value("blocks", 0);
+  grid.blocks_used = json.value("blocks_used", 0);
   if (!(grid.spacing_x > 2.0 && grid.spacing_y > 2.0) || grid.columns < 2 || grid.rows < 2 || grid.sensor_width <= 0 ||
       grid.sensor_height <= 0 || std::abs(grid.rotation) > 0.5)
     throw Error(source + ": lenslet grid out of range (spacing > 2 px, at least 2x2 lenses, |rotation| <= 0.5)");

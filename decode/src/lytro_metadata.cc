@@ -1,6 +1,7 @@
 #include "lfsp/decode/lytro_metadata.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -164,6 +165,14 @@ std::optional<int> StepAt(const nlohmann::json& m, std::string_view path, const 
 }
 
 }  // namespace
+
+BayerPattern BayerPatternFromString(const std::string& name) {
+  std::string upper = name;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (const BayerPattern pattern : {BayerPattern::kRGGB, BayerPattern::kGRBG, BayerPattern::kGBRG, BayerPattern::kBGGR})
+    if (ToString(pattern) == upper) return pattern;
+  throw Error("Bayer pattern '" + name + "': unknown (expected rggb, grbg, gbrg or bggr)");
+}
 
 std::string_view ToString(BayerPattern pattern) {
   switch (pattern) {

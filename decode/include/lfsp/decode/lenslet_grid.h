@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,10 +29,14 @@ struct LensletGrid {
   int sensor_width = 0;
   int sensor_height = 0;
 
-  // Fit quality (zero for a grid that was not fitted).
-  double rms_residual = 0.0;  // px, RMS distance of the inlier centroids from the fitted lattice
-  int lenses_measured = 0;    // micro-images whose centroid was measured
-  int lenses_used = 0;        // inliers of the final fit
+  // How the grid was found and how well it fits (empty / zero for a grid that was not fitted).
+  std::string fit_method;     // "white-image centroids" or "capture periodicity"
+  double rms_residual = 0.0;  // px: RMS distance of the inlier centroids (white image) or of the blocks' local
+                              // lattice positions (capture) from the fitted lattice
+  int lenses_measured = 0;    // white image: micro-images whose centroid was measured
+  int lenses_used = 0;        // white image: inliers of the final fit
+  int blocks = 0;             // capture: blocks of about 12 x 12 lenses whose lattice phase was measured
+  int blocks_used = 0;        // capture: inlier blocks of the final fit
 
   int Shift(int j) const { return ((j + row_shift) % 2 + 2) % 2; }
   void Centre(double i, int j, double& x, double& y) const;
@@ -97,5 +102,29 @@ cv::Mat WhiteImageToGrey(const RawImage& white, const RawFormat& format, const s
 // not show a lattice near the guess.
 GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& guess,
                                  const GridEstimateOptions& options = {});
+
+// Fits the lattice to any lenslet image, including an ordinary capture (scene content, dark and saturated regions,
+// JPEG blocking, vignetted corners), from its periodicity: the spectral peaks of the image's local contrast give the
+// lattice vectors, the lattice phase of every block of about 12 x 12 lenses (fitted as a plane over the sensor)
+// refines them and gives the lattice position, averaged over the whole sensor. `guess`, when given, bounds the
+// spacing search to +-15 % of guess->spacing (> 0), picks the row direction nearest guess->rotation and indexes
+// lenses from guess->axis; without it, spacings of 4 px to 60 px (or a sixth of the image) are searched, rows are taken nearest horizontal and the
+// axis is the image centre. `grey` as WhiteImageToGrey makes it. The result has no per-lens centres.
+// lfsp::Error if the image shows no lattice.
+GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::optional<GridGuess>& guess);
+
+// What a lenslet image is, for choosing how to fit its grid.
+enum class LensletImageKind {
+  kAuto,        // decide from the image: micro-images of even brightness are a white image
+  kWhiteImage,  // per-lens centroids (EstimateLensletGrid), seeded by the periodicity fit when there is no guess
+  kCapture,     // periodicity only (EstimateLensletGridFromCapture)
+};
+std::string_view ToString(LensletImageKind kind);
+LensletImageKind LensletImageKindFromString(const std::string& name);  // auto | white | capture
+
+// The lattice of any grey lenslet image (WhiteImageToGrey of a white image or a capture). kAuto fits by
+// periodicity, then refines by centroids when the micro-images are evenly lit (90 % of the lenses within a factor
+// of 1.6 of the median brightness): centroids are the more precise where the scene does not pull them.
+GridEstimate FindLensletGrid(const cv::Mat& grey, const std::optional<GridGuess>& guess, LensletImageKind kind);
 
 }  // namespace lfsp::decode

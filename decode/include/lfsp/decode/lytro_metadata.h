@@ -16,6 +16,8 @@ namespace lfsp::decode {
 // "BGGR", Illum "GRBG").
 enum class BayerPattern { kRGGB, kGRBG, kGBRG, kBGGR };
 std::string_view ToString(BayerPattern pattern);
+// "rggb", "GRBG", ... (any case); lfsp::Error for anything else.
+BayerPattern BayerPatternFromString(const std::string& name);
 
 // One value per Bayer channel, as Lytro stores levels and gains: {r, gr, gb,
 // b}.

@@ -1,0 +1,35 @@
+#include "raw_input_options.h"
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::cli {
+
+void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments) {
+  command->add_option("--camera", arguments.camera,
+                      "Plain raw images: the camera, f01 | illum (sensor layout, levels, micro-lens pitch, colour; "
+                      "Lytro files carry their own)");
+  command->add_option("--bayer", arguments.bayer,
+                      "Plain raw images: Bayer pattern of the top-left 2x2 tile, rggb | grbg | gbrg | bggr "
+                      "(default: the camera's; F01 bggr, Illum grbg)");
+  command->add_option("--black", arguments.black,
+                      "Plain raw images: black level in file codes (default: 0, or the camera's for a 16-bit sensor "
+                      "dump)");
+  command->add_option("--white", arguments.white,
+                      "Plain raw images: white (saturation) level in file codes (default: 255 / 65535, or the "
+                      "camera's for a 16-bit sensor dump)");
+}
+
+decode::PlainRawOptions ToPlainRawOptions(const PlainRawArguments& arguments) {
+  decode::PlainRawOptions options;
+  if (!arguments.camera.empty()) {
+    if (arguments.camera != "f01" && arguments.camera != "illum")
+      throw Error("--camera '" + arguments.camera + "': unknown (expected f01 or illum)");
+    options.camera = arguments.camera;
+  }
+  if (!arguments.bayer.empty()) options.bayer = decode::BayerPatternFromString(arguments.bayer);
+  if (arguments.black >= 0.0) options.black = arguments.black;
+  if (arguments.white >= 0.0) options.white = arguments.white;
+  return options;
+}
+
+}  // namespace lfsp::cli

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "lfsp/decode/lytro_metadata.h"
+#include "lfsp/decode/raw_packing.h"
+
+namespace lfsp::decode {
+
+// How to read a Bayer mosaic that comes in an ordinary image file, without Lytro metadata.
+struct PlainRawOptions {
+  std::string camera;                 // "f01" or "illum": sensor layout and optics (NominalMetadata); "" = unknown
+  std::optional<BayerPattern> bayer;  // overrides the camera's pattern
+  std::optional<double> black;        // overrides the black level (raw code)
+  std::optional<double> white;        // overrides the white (saturation) level (raw code)
+};
+
+// The nominal metadata of a Lytro camera ("f01" or "illum", case-insensitive) for a width x height sensor: raw
+// levels, Bayer pattern, micro-lens pitch and rotation, colour matrix and white balance, as real files of that
+// camera state them. The micro-lens array is taken as centred (no sensor offset). lfsp::Error naming `source` for
+// an unknown camera.
+LytroMetadata NominalMetadata(const std::string& camera, int width, int height, const std::string& source);
+
+// A raw lenslet image in hand, from any input the decoder reads.
+struct RawInput {
+  std::filesystem::path path;
+  std::string format;  // "LFP container", "raw + metadata pair", "plain raw image (8-bit PNG)", ...
+  RawImage raw;
+  LytroMetadata metadata;    // from the file, or NominalMetadata for a plain image
+  bool white_image = false;  // a Lytro modulation (white) image
+  bool has_camera_metadata = false;  // false: a plain image without --camera (no optics, no colour)
+  std::string levels;        // where the black and white levels came from, for the one-line report
+};
+
+// True for the extensions of plain raw images: .png .tif .tiff .jpg .jpeg (any case).
+bool IsPlainRawImagePath(const std::filesystem::path& path);
+
+// A single-channel 8- or 16-bit PNG, TIFF or JPEG holding a Bayer mosaic (or a grey image: RGB files with three
+// equal channels count as one). Levels: --black/--white when given;
+// otherwise 16-bit files whose largest code fits under the camera's white level keep the camera's levels (a sensor
+// dump), and every other file spans its full code range (0..255 or 0..65535). lfsp::Error naming the file for
+// colour or float images and for levels out of range.
+RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOptions& options);
+
+// Any raw input: a Lytro capture or white image (LFP/LFR container, .RAW + metadata pair), or a plain raw image.
+// Plain options other than `camera` apply to plain images only; lfsp::Error naming the file when there is no raw
+// image or no metadata to read it.
+RawInput OpenRawInput(const std::filesystem::path& path, const PlainRawOptions& options = {});
+
+}  // namespace lfsp::decode

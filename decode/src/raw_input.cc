@@ -1,0 +1,185 @@
+// Raw lenslet images from every input the decoder reads: Lytro files with their metadata, and plain image files
+// holding a Bayer mosaic with a camera's nominal metadata.
+
+#include "lfsp/decode/raw_input.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <vector>
+#include <opencv2/core.hpp>
+
+#include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/decode/lytro_capture.h"
+
+namespace lfsp::decode {
+namespace {
+
+std::string Lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+BayerValues Uniform(double value) { return {value, value, value, value}; }
+
+// The facts a decoder needs about each camera, as the real files state them (F01: ../shared/data/lytro
+// f01_frame_metadata.json; Illum: illum_demo.LFP and its white-image TXT).
+struct CameraFacts {
+  const char* model;
+  BayerPattern mosaic;
+  int bits;
+  double black;
+  double white;
+  double lens_pitch;   // m
+  double pixel_pitch;  // m
+  double rotation;     // rad
+  double scale_y;
+  std::array<double, 9> ccm;
+  BayerValues white_balance;
+  double gamma;
+};
+
+const CameraFacts& FactsFor(const std::string& camera, const std::string& source) {
+  static const CameraFacts kF01 = {
+      "F01", BayerPattern::kBGGR, 12, 168.0, 4095.0, 1.389859962463379e-05, 1.3999999761581417e-06,
+      0.0019290975760668516, 1.0004994869232178,
+      {3.1115827560424805, -1.9393929243087769, -0.172189861536026, -0.3629055917263031, 1.6408803462982178,
+       -0.27797481417655945, 0.078967012465000153, -1.1558042764663696, 2.0768373012542725},
+      {1.0, 1.1171875, 1.1171875, 1.72265625}, 0.416660010814666748};
+  static const CameraFacts kIllum = {
+      "ILLUM", BayerPattern::kGRBG, 10, 64.0, 1023.0, 2e-05, 1.4e-06, -0.0008558133849874139, 1.0003466606140137,
+      {2.244826316833496, -0.9087038040161133, -0.33612245321273804, -0.5600823760032654, 1.7229819297790527,
+       -0.16289949417114258, -0.5868203043937683, -1.3248286247253418, 2.911648750305176},
+      {1.0, 1.0, 1.0, 1.0}, 1.0};
+  const std::string name = Lower(camera);
+  if (name == "f01") return kF01;
+  if (name == "illum") return kIllum;
+  throw Error(source + ": camera '" + camera + "' unknown (expected f01 or illum)");
+}
+
+std::string Extension(const std::filesystem::path& path) { return Lower(path.extension().string()); }
+
+}  // namespace
+
+LytroMetadata NominalMetadata(const std::string& camera, int width, int height, const std::string& source) {
+  const CameraFacts& facts = FactsFor(camera, source);
+  LytroMetadata metadata;
+  metadata.source = source;
+  metadata.schema = "nominal " + std::string(facts.model) + " metadata (none in the file)";
+  metadata.camera_make = "Lytro, Inc.";
+  metadata.camera_model = facts.model;
+  RawFormat format;
+  format.width = width;
+  format.height = height;
+  format.black = Uniform(facts.black);
+  format.white = Uniform(facts.white);
+  format.mosaic = facts.mosaic;
+  metadata.raw_format = format;
+  MlaDescription mla;
+  mla.lens_pitch = facts.lens_pitch;
+  mla.pixel_pitch = facts.pixel_pitch;
+  mla.rotation = facts.rotation;
+  mla.scale_y = facts.scale_y;
+  mla.tiling = "hexUniformRowMajor";
+  metadata.mla = mla;
+  metadata.colour.ccm = facts.ccm;
+  metadata.colour.white_balance_gain = facts.white_balance;
+  metadata.colour.gamma = facts.gamma;
+  return metadata;
+}
+
+bool IsPlainRawImagePath(const std::filesystem::path& path) {
+  const std::string extension = Extension(path);
+  return extension == ".png" || extension == ".tif" || extension == ".tiff" || extension == ".jpg" ||
+         extension == ".jpeg";
+}
+
+RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOptions& options) {
+  const std::string name = path.string();
+  ImageFile image = ReadImage(path);
+  if (image.pixels.channels() != 1) {
+    // A grey picture saved as RGB (as white images exported by other tools often are) is one channel in disguise.
+    std::vector<cv::Mat> planes;
+    cv::split(image.pixels, planes);
+    for (int c = 1; c < std::min(3, image.pixels.channels()); ++c)
+      if (cv::norm(planes[0], planes[static_cast<std::size_t>(c)], cv::NORM_INF) > 0.0)
+        throw Error(name + ": a raw Bayer image has one channel; this one has " +
+                    std::to_string(image.pixels.channels()) + " different ones (a colour picture is not a raw lenslet "
+                    "image)");
+    image.pixels = planes[0];
+  }
+  if (image.bit_depth != 8 && image.bit_depth != 16)
+    throw Error(name + ": raw images must be 8- or 16-bit integers; this one has " + std::to_string(image.bit_depth) +
+                "-bit samples");
+  RawInput input;
+  input.path = path;
+  input.format = "plain raw image (" + std::to_string(image.bit_depth) + "-bit " +
+                 Lower(path.extension().string()).substr(1) + ")";
+  const int width = image.pixels.cols, height = image.pixels.rows;
+  if (width < 2 || height < 2) throw Error(name + ": image is smaller than one Bayer tile");
+  input.has_camera_metadata = !options.camera.empty();
+  input.metadata = input.has_camera_metadata ? NominalMetadata(options.camera, width, height, name) : LytroMetadata{};
+  if (!input.has_camera_metadata) {
+    input.metadata.source = name;
+    input.metadata.schema = "none (plain raw image without --camera)";
+    input.metadata.raw_format = RawFormat{};
+    input.metadata.raw_format->width = width;
+    input.metadata.raw_format->height = height;
+    input.metadata.mla_problem = "no camera given (--camera f01|illum)";
+  }
+  RawFormat& format = *input.metadata.raw_format;
+  if (options.bayer) format.mosaic = *options.bayer;
+
+  // Integer codes back from the [0, 1] floats.
+  const double full_scale = image.bit_depth == 8 ? 255.0 : 65535.0;
+  input.raw.width = width;
+  input.raw.height = height;
+  input.raw.pixels.resize(input.raw.PixelCount());
+  std::uint16_t largest = 0;
+  for (int y = 0; y < height; ++y) {
+    const float* row = image.pixels.ptr<float>(y);
+    std::uint16_t* out = input.raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+    for (int x = 0; x < width; ++x) {
+      out[x] = static_cast<std::uint16_t>(std::lround(std::clamp(static_cast<double>(row[x]), 0.0, 1.0) * full_scale));
+      largest = std::max(largest, out[x]);
+    }
+  }
+  image.pixels.release();
+
+  const bool sensor_dump = image.bit_depth == 16 && input.has_camera_metadata && largest <= format.white.gr;
+  double black = sensor_dump ? format.black.gr : 0.0, white = sensor_dump ? format.white.gr : full_scale;
+  input.levels = sensor_dump ? "the camera's levels (codes fit its " + std::to_string(static_cast<int>(white)) +
+                                   " white level)"
+                             : "the file's full code range";
+  if (options.black || options.white) input.levels = "given levels";
+  black = options.black.value_or(black);
+  white = options.white.value_or(white);
+  if (!(black >= 0.0 && white > black && white <= full_scale))
+    throw Error(name + ": levels black " + std::to_string(black) + " / white " + std::to_string(white) +
+                " out of range for a " + std::to_string(image.bit_depth) + "-bit image (need 0 <= black < white <= " +
+                std::to_string(static_cast<int>(full_scale)) + ")");
+  format.black = Uniform(black);
+  format.white = Uniform(white);
+  input.levels += ": black " + std::to_string(static_cast<int>(black)) + ", white " +
+                  std::to_string(static_cast<int>(white));
+  return input;
+}
+
+RawInput OpenRawInput(const std::filesystem::path& path, const PlainRawOptions& options) {
+  if (IsPlainRawImagePath(path)) return ReadPlainRawImage(path, options);
+  const LytroCapture capture = OpenLytroCapture(path);
+  (void)capture.RawBytes();  // "<file>: no raw image: this file holds ..."
+  if (!capture.metadata) throw Error(path.string() + ": no frame metadata (" + capture.metadata_problem + ")");
+  RawInput input;
+  input.path = path;
+  input.format = capture.format;
+  input.metadata = *capture.metadata;
+  input.raw = capture.ReadRawImage();
+  input.white_image = capture.IsWhiteImage();
+  input.has_camera_metadata = true;
+  input.levels = "the file's metadata";
+  return input;
+}
+
+}  // namespace lfsp::decode
