@@ -10,6 +10,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
 #include "lfsp/decode/capture_decoder.h"
+#include "raw_input_options.h"
 #include "summary.h"
 
 namespace lfsp::cli {
@@ -24,12 +25,16 @@ struct DecodeCommandOptions {
   bool no_hot_pixels = false;
   double dehex = 0.1;
   int bit_depth = 16;
+  bool no_white_image = false;
+  PlainRawArguments plain;
 };
 
 void RunDecode(const DecodeCommandOptions& options) {
   if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth must be 8 or 16");
   decode::CaptureDecodeOptions decode_options;
   decode_options.white_images = options.white_images;
+  decode_options.no_white_image = options.no_white_image;
+  decode_options.plain = ToPlainRawOptions(options.plain);
   decode_options.decode.demosaic = decode::DemosaicMethodFromString(options.demosaic);
   decode_options.decode.colour = decode::ColourModeFromString(options.colour);
   decode_options.decode.correct_hot_pixels = !options.no_hot_pixels;
@@ -60,8 +65,9 @@ void AddDecodeCommand(CLI::App& app) {
   auto options = std::make_shared<DecodeCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "decode",
-      "Decode a Lytro raw capture (.lfp/.lfr/.LFR, or .RAW + .TXT/.json) into a 4D light field: white image by "
-      "serial/zoom/focus, lenslet grid fit, hot pixels, devignetting, demosaic, hex->rect slicing, colour");
+      "Decode a Lytro raw capture (.lfp/.lfr/.LFR, .RAW + .TXT/.json, or a plain raw PNG/TIFF/JPEG with --camera) "
+      "into a 4D light field: white image by serial/zoom/focus (or estimated from the capture), lenslet grid fit, "
+      "hot pixels, devignetting, demosaic, hex->rect slicing, colour");
   command->add_option("capture", options->capture, "The capture file")->required();
   command->add_option("--white-images", options->white_images,
                       "Folder of white images, MOD_*.RAW + .TXT or calibration archives data.C.* (default: the "
@@ -70,6 +76,11 @@ void AddDecodeCommand(CLI::App& app) {
       ->add_option("--out", options->out,
                    "Output: OUT.h5 writes a bundle, OUT.png an ESLF image, anything else a views folder")
       ->required();
+  command->add_flag("--no-white-image", options->no_white_image,
+                    "Estimate the white image (micro-image vignetting) and the lenslet grid from the capture itself "
+                    "instead of looking one up (automatic, with a warning, when no white image matches; always for "
+                    "plain raw images)");
+  AddPlainRawOptions(command, options->plain);
   command->add_option("--demosaic", options->demosaic, "gradient | edge-aware | bilinear (default: gradient)");
   command->add_option("--colour", options->colour,
                       "camera (white balance, colour matrix, exposure bias, sRGB) | linear (devignetted scene-linear "

@@ -8,6 +8,7 @@
 
 #include "../pipeline/pipeline.h"
 #include "command_registry.h"
+#include "raw_input_options.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -21,12 +22,18 @@ void AddPipelineCommand(CLI::App& app) {
       "pipeline",
       "Run everything on one input: (decode) -> depth -> LFSP segmentation -> (recolour) -> evaluation -> report.html");
   command->add_option("input", *input,
-                      "Lytro capture (.lfr/.lfp, with white images) or light field (views folder, .h5 bundle); "
+                      "Lytro capture (.lfr/.lfp, with white images), plain raw PNG/TIFF/JPEG with --camera, or light "
+                      "field (views folder, .h5 bundle, ESLF); "
                       "default: the bundled mini-Illum capture");
   command->add_option("--out", *out, "Output folder for every intermediate, summary.json and report.html")->required();
   AddViewsOption(command, options->views);
   command->add_option("--white-images", options->white_images,
                       "Folder of white images for a raw capture (default: beside the capture, and its whites/)");
+  command->add_flag("--no-white-image", options->no_white_image,
+                    "Raw captures: estimate the white image and lenslet grid from the capture itself (automatic, with "
+                    "a warning, when no white image matches)");
+  auto plain = std::make_shared<PlainRawArguments>();
+  AddPlainRawOptions(command, *plain);
   auto dmin = std::make_shared<float>(0.0f);
   auto dmax = std::make_shared<float>(0.0f);
   CLI::Option* dmin_option = command->add_option("--dmin", *dmin,
@@ -48,7 +55,8 @@ void AddPipelineCommand(CLI::App& app) {
       ->add_option("--focal-stack", options->focal_stack_slices, "Slices of the focal stack over the disparity range")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
-  command->callback([options, input, out, dmin, dmax, dmin_option] {
+  command->callback([options, input, out, dmin, dmax, dmin_option, plain] {
+    options->plain = ToPlainRawOptions(*plain);
     if (dmin_option->count() > 0) options->depth.range = DisparityRange{*dmin, *dmax};
     options->input = *input;
     options->out = *out;

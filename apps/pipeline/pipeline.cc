@@ -163,12 +163,16 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   StageRunner stages(recolor ? 7 : 6, timings);
 
-  const bool raw_capture = decode::LooksLikeLytroFile(input);
+  // A .png/.tif is a light field (ESLF) unless a camera says it is a raw Bayer mosaic.
+  const bool raw_capture = decode::LooksLikeLytroFile(input) ||
+                           (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
   Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
     Bundle out;
     if (raw_capture) {
       decode::CaptureDecodeOptions decode_options;
       decode_options.white_images = options.white_images;
+      decode_options.no_white_image = options.no_white_image;
+      decode_options.plain = options.plain;
       decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
       out.light_field = std::move(decoded.light_field);
       summary["decode"] = decoded.summary;

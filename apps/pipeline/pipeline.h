@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/decode/raw_input.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/segment/params.h"
 
@@ -17,6 +18,8 @@ struct PipelineOptions {
   std::filesystem::path input;         // empty: the bundled sample
   std::filesystem::path out;           // output folder (created; replaced only if it holds a previous run)
   std::filesystem::path white_images;  // for raw captures; empty: beside the capture
+  bool no_white_image = false;         // estimate the white image and grid from the capture (CaptureDecodeOptions)
+  decode::PlainRawOptions plain;       // a plain raw image (PNG/TIFF/JPEG Bayer mosaic) is the input when camera is set
   depth::DepthOptions depth;
   segment::LfspParams segment;
   std::string recolor;  // "" = none; see RecolorSpec in recolor_spec.h

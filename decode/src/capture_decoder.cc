@@ -6,7 +6,6 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/decode/lenslet_grid.h"
-#include "lfsp/decode/lytro_capture.h"
 #include "lfsp/decode/white_database.h"
 
 namespace lfsp::decode {
@@ -16,55 +15,116 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The white image a decode uses and where it came from.
+struct WhiteSource {
+  RawImage raw;
+  LytroMetadata metadata;
+  nlohmann::json summary;  // name, path, why (and, when estimated, how many lenses it was averaged over)
+  bool estimated = false;
+};
+
+// The capture's white image from the database: by serial, zoom, focus. lfsp::Error when none matches.
+WhiteSource WhiteFromDatabase(const RawInput& input, const std::filesystem::path& white_dir) {
+  const WhiteImageDatabase database = LoadOrBuildWhiteImageDatabase(white_dir);
+  const WhiteImageChoice choice = SelectWhiteImage(database, input.metadata);
+  WhiteSource white;
+  white.raw = ReadWhiteImageRaw(*choice.entry);
+  white.metadata = ReadWhiteImageMetadata(*choice.entry);
+  white.summary = {{"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
+  return white;
+}
+
+WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, const std::string& why) {
+  WhiteSource white;
+  CaptureWhiteReport report;
+  white.raw = EstimateWhiteImageFromCapture(input.raw, input.metadata, grid, &report);
+  white.metadata = input.metadata;
+  white.metadata.source = input.path.string() + " (white image estimated from the capture)";
+  white.estimated = true;
+  white.summary = {{"name", "estimated from the capture"},
+                   {"path", input.path.string()},
+                   {"why", why},
+                   {"lenses_used", report.lenses_used},
+                   {"lenses", report.lenses},
+                   {"tiles", report.tiles}};
+  return white;
+}
+
+// The lattice of the capture itself, starting from the metadata's description of the micro-lens array.
+GridEstimate GridFromCapture(const RawInput& input) {
+  const cv::Mat grey = WhiteImageToGrey(input.raw, input.metadata.RequireRawFormat(), input.path.string());
+  std::optional<GridGuess> guess;
+  if (input.metadata.mla) guess = GuessFromMetadata(input.metadata, input.raw.width, input.raw.height);
+  return FindLensletGrid(grey, guess, LensletImageKind::kCapture);
+}
+
 }  // namespace
 
 CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path, const CaptureDecodeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const LytroCapture capture = OpenLytroCapture(capture_path);
-  (void)capture.RawBytes();  // "<file>: no raw image: this file holds ..." for exports without one
-  if (capture.IsWhiteImage())
+  const RawInput input = OpenRawInput(capture_path, options.plain);
+  if (input.white_image)
     throw Error(capture_path.string() +
                 ": this is a white (modulation) image, not a capture; index it with `lfsp whites build` instead");
-  if (!capture.metadata) throw Error(capture_path.string() + ": no frame metadata (" + capture.metadata_problem + ")");
-  const LytroMetadata& metadata = *capture.metadata;
-  const RawImage raw = capture.ReadRawImage();
+  if (!input.has_camera_metadata)
+    throw Error(capture_path.string() +
+                ": a plain raw image needs --camera f01|illum to decode (sensor layout, optics and colour)");
+  const LytroMetadata& metadata = input.metadata;
   const double read_seconds = SecondsSince(start);
 
-  // The white image: by serial, zoom, focus.
+  // The white image: from the database, or (asked for, plain images, none found) estimated from the capture.
   auto step = std::chrono::steady_clock::now();
   const std::filesystem::path white_dir =
       options.white_images.empty() ? std::filesystem::absolute(capture_path).parent_path() : options.white_images;
-  if (!std::filesystem::is_directory(white_dir))
+  if (!options.white_images.empty() && !std::filesystem::is_directory(white_dir))
     throw Error(white_dir.string() + ": white-image folder does not exist");
-  const WhiteImageDatabase database = LoadOrBuildWhiteImageDatabase(white_dir);
-  const WhiteImageChoice choice = SelectWhiteImage(database, metadata);
-  spdlog::info("white image: {}", choice.explanation);
-  const RawImage white = ReadWhiteImageRaw(*choice.entry);
-  const LytroMetadata white_metadata = ReadWhiteImageMetadata(*choice.entry);
+  std::optional<WhiteSource> white;
+  std::string estimate_why = "--no-white-image";
+  if (IsPlainRawImagePath(capture_path)) {
+    estimate_why = "a plain raw image has no serial, zoom or focus to match a white image by";
+  } else if (!options.no_white_image) {
+    try {
+      white = WhiteFromDatabase(input, white_dir);
+    } catch (const Error& e) {
+      estimate_why = std::string("no matching white image (") + e.what() + ")";
+      spdlog::warn("{}: {}; estimating the white image from the capture itself", capture_path.string(), estimate_why);
+    }
+  }
   const double white_seconds = SecondsSince(step);
 
-  // The lenslet grid, fitted on the white image, starting from its micro-lens description (or the capture's).
+  // The lenslet grid: fitted on the white image (starting from its micro-lens description, or the capture's), or
+  // found in the capture itself.
   step = std::chrono::steady_clock::now();
-  const PreparedWhite prepared = PrepareWhite(white, white_metadata, options.decode.colour, options.decode.min_white);
-  const LytroMetadata& mla_source = white_metadata.mla ? white_metadata : metadata;
-  const GridEstimate estimate =
-      EstimateLensletGrid(prepared.grey, GuessFromMetadata(mla_source, white.width, white.height));
+  GridEstimate estimate;
+  if (white) {
+    const cv::Mat grey = WhiteImageToGrey(white->raw, white->metadata.RequireRawFormat(), white->metadata.source);
+    const LytroMetadata& mla_source = white->metadata.mla ? white->metadata : metadata;
+    estimate = EstimateLensletGrid(grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
+  } else {
+    estimate = GridFromCapture(input);
+    white = WhiteFromCapture(input, estimate.grid, estimate_why);
+  }
+  const PreparedWhite prepared =
+      PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   const double grid_seconds = SecondsSince(step);
-  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px",
+  spdlog::info("white image: {}", white->summary["why"].get<std::string>());
+  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px ({})",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
-               estimate.grid.rotation, estimate.grid.rms_residual);
+               estimate.grid.rotation, estimate.grid.rms_residual, estimate.grid.fit_method);
 
   CaptureDecodeResult result;
   DecodeReport report;
-  result.light_field = DecodeLenslet(raw, metadata, prepared, estimate.grid, options.decode, &report);
-  result.light_field.metadata["decode"]["white_choice"] = choice.explanation;
+  result.light_field = DecodeLenslet(input.raw, metadata, prepared, estimate.grid, options.decode, &report);
+  result.light_field.metadata["decode"]["white_choice"] = white->summary["why"];
+  result.light_field.metadata["decode"]["white_estimated"] = white->estimated;
 
   const LightFieldShape& shape = result.light_field.shape();
   result.summary = {
       {"capture", capture_path.string()},
+      {"input_format", input.format},
+      {"levels", input.levels},
       {"camera", {{"model", metadata.camera_model}, {"serial", metadata.serial}}},
-      {"white_image",
-       {{"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}}},
+      {"white_image", white->summary},
       {"grid", estimate.grid.ToJson()},
       {"light_field",
        {{"nu", shape.nu},

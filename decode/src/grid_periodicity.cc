@@ -46,12 +46,11 @@ struct Frequency {
 
 double Wrap(double phase) { return std::remainder(phase, kTwoPi); }
 
-// The image's local contrast, (I - local mean) / local mean over about two lens pitches, with the Bayer pattern's
-// residue removed by a [1 2 1] filter first: the lattice is then equally strong in bright and dim regions.
+// The image's local contrast, (I - local mean) / local mean over about two lens pitches: the lattice is then equally
+// strong in bright and dim regions. (What is left of the Bayer pattern sits at the Nyquist frequency, far from the
+// lattice's, so neither the spectrum nor the block demodulation sees it.)
 cv::Mat LocalContrast(const cv::Mat& grey, double spacing) {
-  const cv::Mat taps = (cv::Mat_<float>(3, 1) << 0.25f, 0.5f, 0.25f);
-  cv::Mat smooth;
-  cv::sepFilter2D(grey, smooth, CV_32F, taps, taps, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
+  const cv::Mat& smooth = grey;
   const int box = 2 * static_cast<int>(std::lround(spacing)) + 1;
   cv::Mat local;
   cv::blur(smooth, local, cv::Size(box, box), cv::Point(-1, -1), cv::BORDER_REFLECT);
@@ -155,7 +154,8 @@ Frequency RefinePeak(const cv::Mat& power, const Frequency& f) {
 // Step 1: two first-ring reciprocal vectors 60 degrees apart, for a lens spacing in [min_spacing, max_spacing].
 std::array<Frequency, 2> CoarseReciprocal(const cv::Mat& contrast, double min_spacing, double max_spacing) {
   int side = 1;
-  while (side * 2 <= std::min({contrast.cols, contrast.rows, 2048})) side *= 2;
+  // 1024 bins resolve the peaks to ~1e-4 cycles per pixel, far finer than the phase-plane fit needs to take over.
+  while (side * 2 <= std::min({contrast.cols, contrast.rows, 1024})) side *= 2;
   if (side < std::min(contrast.cols, contrast.rows) && side < 256)
     side = std::min(contrast.cols, contrast.rows) & ~1;  // small images: use all of them
   const cv::Mat power = WhitenedSpectrum(contrast, side);
@@ -209,8 +209,7 @@ struct BlockPhases {
 
 // Step 2a: z_m = sum over the block of hann(p) contrast(p) exp(-2 pi i k_m . (p - centre)).
 std::vector<BlockPhases> DemodulateBlocks(const cv::Mat& contrast, const std::array<Frequency, 3>& k, int block,
-                                          int& columns, int& rows) {
-  const int step = block / 2;
+                                          int step, int& columns, int& rows) {
   columns = std::max(1, (contrast.cols - block) / step + 1);
   rows = std::max(1, (contrast.rows - block) / step + 1);
   std::vector<double> window(static_cast<std::size_t>(block));
@@ -421,9 +420,13 @@ GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::opti
   const int block = std::clamp(static_cast<int>(std::lround(12.0 * spacing)), 32, std::min(grey.cols, grey.rows));
   std::array<PhasePlane, 3> planes;
   int columns = 0, rows = 0;
+  // Blocks tile the sensor; on small images they overlap by half, for enough of them.
+  const int step = (grey.cols / block) * (grey.rows / block) >= 100 ? block : block / 2;
+  // Two rounds: the second demodulates at the refined vectors (measured: it moves the lattice by < 0.01 px on full
+  // captures, but small images start coarser).
   for (int round = 0; round < 2; ++round) {
-    const std::vector<BlockPhases> blocks = DemodulateBlocks(contrast, k, block, columns, rows);
-    for (int m = 0; m < 3; ++m) planes[m] = FitPhasePlane(blocks, m, k[m], columns, rows, block / 2);
+    const std::vector<BlockPhases> blocks = DemodulateBlocks(contrast, k, block, step, columns, rows);
+    for (int m = 0; m < 3; ++m) planes[m] = FitPhasePlane(blocks, m, k[m], columns, rows, step);
     // The three vectors are not independent (k3 = k2 - k1): average the two estimates of each.
     k[0] = {0.5 * (planes[0].k.x + planes[1].k.x - planes[2].k.x), 0.5 * (planes[0].k.y + planes[1].k.y - planes[2].k.y)};
     k[1] = {0.5 * (planes[1].k.x + planes[0].k.x + planes[2].k.x), 0.5 * (planes[1].k.y + planes[0].k.y + planes[2].k.y)};

@@ -11,6 +11,7 @@
 
 #include "bayer_preprocess.h"
 #include "lenslet_slicing.h"
+#include "lfsp/decode/lattice_pattern.h"
 #include "lfsp/core/error.h"
 
 namespace lfsp::decode {
@@ -127,7 +128,7 @@ DecodedGeometry DecodedGeometryFor(const LensletGrid& grid) {
 
 nlohmann::json DecodeReport::ToJson() const {
   return {{"demosaic", demosaic},         {"colour", colour},   {"hot_pixels_corrected", hot_pixels_corrected},
-          {"output_scale", output_scale}, {"seconds", seconds}, {"cpu_seconds", cpu_seconds}};
+          {"output_scale", output_scale}, {"row_alternation", row_alternation}, {"seconds", seconds}, {"cpu_seconds", cpu_seconds}};
 }
 
 PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
@@ -226,6 +227,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
   timer.Lap("soften_encode");
+  out_report.row_alternation = RowAlternationRatio(light_field);
 
   light_field.metadata["decode"] = {
       {"source", capture_metadata.source},       {"white_image", white.source},
@@ -233,7 +235,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
       {"output_scale", out_report.output_scale}, {"hot_pixels_corrected", out_report.hot_pixels_corrected},
       {"view_step_pixels", geometry.view_step},  {"grid_spacing_x", grid.spacing_x},
       {"grid_spacing_y", grid.spacing_y},        {"grid_rotation", grid.rotation},
-      {"grid_rms_residual", grid.rms_residual}};
+      {"grid_rms_residual", grid.rms_residual},  {"row_alternation", out_report.row_alternation}};
   if (!capture_metadata.camera_model.empty())
     light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
   return light_field;

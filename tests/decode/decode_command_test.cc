@@ -97,22 +97,39 @@ TEST(DecodeCommand, ContainerWithoutRawImageFailsCleanly) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(DecodeCommand, NoMatchingWhiteImageFailsCleanly) {
+// Issue 13: without a matching white image the decode warns and estimates one from the capture itself; a white-image
+// folder that does not exist is still an error.
+TEST(DecodeCommand, NoMatchingWhiteImageFallsBackToTheCaptureWithAWarning) {
   if (!fs::exists(Sample("mini-illum/capture.LFR"))) GTEST_SKIP() << "samples not present";
   TempDir dir;
   const fs::path out = dir / "out.h5";
-  // The F01 sample's white images belong to another camera (serial): nothing may be chosen.
+  // The F01 sample's white images belong to another camera (serial): none may be chosen.
   auto result = RunLfsp({"decode", Sample("mini-illum/capture.LFR").string(), "--white-images",
                          Sample("mini-f01/whites").string(), "--out", out.string()});
-  EXPECT_EQ(result.exit_status, 2);
-  EXPECT_NE(result.err.find("lfsp: error:"), std::string::npos) << result.err;
-  EXPECT_FALSE(fs::exists(out));
-  // A capture alone in a folder: no white image beside it.
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  // The log (stdout) carries the warning.
+  EXPECT_NE(result.out.find("no matching white image"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("estimating the white image from the capture"), std::string::npos) << result.out;
+  const nlohmann::json summary = nlohmann::json::parse(testing::ReadBytes(dir / "out.summary.json"));
+  EXPECT_EQ(summary["white_image"]["name"], "estimated from the capture");
+  EXPECT_EQ(summary["grid"]["fit_method"], "capture periodicity");
+  EXPECT_LT(summary["decode"]["row_alternation"].get<double>(), 3.0);
+  EXPECT_EQ(LoadLightField(out).light_field.shape(),
+            LoadLightField(Sample("mini-illum/ground_truth/decoded.h5")).light_field.shape());
+  // A capture alone in a folder: no white image beside it either.
   fs::copy_file(Sample("mini-illum/capture.LFR"), dir / "capture.LFR");
-  result = RunLfsp({"decode", (dir / "capture.LFR").string(), "--out", out.string()});
+  const fs::path alone = dir / "alone.h5";
+  result = RunLfsp({"decode", (dir / "capture.LFR").string(), "--out", alone.string()});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("estimating the white image from the capture"), std::string::npos) << result.out;
+  EXPECT_TRUE(fs::exists(alone));
+  // A white-image folder that is not there is a typo, not a fallback.
+  const fs::path missing = dir / "missing.h5";
+  result = RunLfsp({"decode", (dir / "capture.LFR").string(), "--white-images", (dir / "nowhere").string(), "--out",
+                    missing.string()});
   EXPECT_EQ(result.exit_status, 2);
-  EXPECT_NE(result.err.find("white"), std::string::npos) << result.err;
-  EXPECT_FALSE(fs::exists(out));
+  EXPECT_NE(result.err.find("white-image folder does not exist"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(missing));
 }
 
 TEST(DecodeCommand, BadOptionsExit2) {

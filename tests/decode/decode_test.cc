@@ -9,6 +9,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/decode/lenslet_decoder.h"
+#include "lfsp/decode/lattice_pattern.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/simulate/lytro_writer.h"
 #include "lfsp/simulate/raw_capture.h"
@@ -268,6 +269,31 @@ TEST_F(CropIllumDecode, InnerViewsReach28DbAndDemosaicMethodsCompared) {
   EXPECT_GE(default_psnr, best - 0.05);
 }
 
+// Issue 13: without a white image (lattice and vignetting from the capture itself) the inner views stay within
+// 1 dB of the decode with the right white image. The main-lens falloff (15 % at the corners in the simulator) is
+// not observable in one capture: the comparison fits one gain, as every PSNR here does.
+TEST_F(CropIllumDecode, WithoutAWhiteImageWithin1DbOfTheWhiteImageDecode) {
+  const RawImage capture = ToRawImage(shot_->capture);
+  const LensletGrid grid =
+      FindLensletGrid(WhiteImageToGrey(capture, shot_->capture_metadata.RequireRawFormat(), "capture"),
+                      GuessFromMetadata(shot_->capture_metadata, capture.width, capture.height),
+                      LensletImageKind::kCapture)
+          .grid;
+  CaptureWhiteReport report;
+  const RawImage white = EstimateWhiteImageFromCapture(capture, shot_->capture_metadata, grid, &report);
+  EXPECT_GT(report.lenses_used, report.lenses / 2);
+  DecodeOptions options;
+  options.colour = ColourMode::kLinear;
+  const LightField estimated = DecodeLenslet(capture, shot_->capture_metadata, white, shot_->capture_metadata, grid,
+                                             options);
+  const Quality with_white = InnerViewPsnr(Decode(*shot_, *grid_, {}), shot_->truth.light_field, 4);
+  const Quality without = InnerViewPsnr(estimated, shot_->truth.light_field, 4);
+  std::printf("  inner 9x9 views: with white image %.2f dB, estimated from the capture %.2f dB (%d of %d lenses, "
+              "%d x %d tiles)\n",
+              with_white.psnr, without.psnr, report.lenses_used, report.lenses, report.tiles, report.tiles);
+  EXPECT_GE(without.psnr, with_white.psnr - 1.0);
+}
+
 TEST_F(CropIllumDecode, NoMoreRowShiftEnergyThanTheTruth) {
   DecodeOptions options;
   if (std::getenv("DEHEX")) options.dehex = std::atof(std::getenv("DEHEX"));
@@ -277,6 +303,23 @@ TEST_F(CropIllumDecode, NoMoreRowShiftEnergyThanTheTruth) {
   const double truth_share = RowShiftEnergyShare(shot_->truth.light_field, 1.0);
   std::printf("  row-shift frequency energy share: decoded %.3e, truth %.3e\n", decoded_share, truth_share);
   EXPECT_LE(decoded_share, truth_share);
+}
+
+// The decode summary's measure of a leftover lattice pattern reads about 1 on a correct decode and flags a wrong
+// row shift (alternate lens rows sliced half a lens off), which stripes every textured region.
+TEST_F(CropIllumDecode, RowAlternationRatioFlagsAWrongRowShift) {
+  DecodeReport report;
+  (void)Decode(*shot_, *grid_, {}, &report);
+  LensletGrid wrong = *grid_;
+  wrong.row_shift = 1 - wrong.row_shift;
+  DecodeReport wrong_report;
+  (void)Decode(*shot_, wrong, {}, &wrong_report);
+  const double truth = RowAlternationRatio(shot_->truth.light_field);
+  std::printf("  row alternation ratio: truth %.3f, decoded %.3f, wrong row shift %.3f\n", truth,
+              report.row_alternation, wrong_report.row_alternation);
+  // Measured: truth 1.23, decoded 2.03 (hexagonal sampling leaves a little even after dehex), wrong row shift 24.6.
+  EXPECT_LT(report.row_alternation, 3.0);
+  EXPECT_GT(wrong_report.row_alternation, 10.0);
 }
 
 TEST_F(CropIllumDecode, WeightsFollowTheWhiteImage) {

@@ -51,6 +51,7 @@ struct DecodeReport {
   std::string colour;
   long hot_pixels_corrected = 0;
   double output_scale = 1.0;              // the factor that brought the brightest decoded sample to <= 1 (no clipping)
+  double row_alternation = 0.0;           // RowAlternationRatio of the result (~1 clean, > 2 striped)
   std::map<std::string, double> seconds;  // wall time per step
   std::map<std::string, double> cpu_seconds;  // CPU time per step, all threads
   nlohmann::json ToJson() const;
@@ -67,6 +68,20 @@ struct PreparedWhite {
 };
 PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
                            double min_white = DecodeOptions{}.min_white);
+
+// A white image estimated from the capture itself (for raws that come without one): the micro-image vignetting
+// profile, averaged over every unclipped lit lens by its offset from the lens centre after dividing each micro-image
+// by its own core brightness per Bayer phase (so the scene's brightness and colour cancel), per tile of the sensor
+// (up to 5 x 5, blended), times the sensor's response per phase (normalizedResponses, else the inverse white
+// balance, else flat), in the capture's raw format. The smooth main-lens falloff across the sensor cannot be told
+// from the scene in one capture and is not included. lfsp::Error naming the source when too few lenses are usable.
+struct CaptureWhiteReport {
+  int lenses = 0;       // lenses of the grid
+  int lenses_used = 0;  // unclipped, fully on the sensor, every Bayer phase lit
+  int tiles = 0;        // per axis
+};
+RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata, const LensletGrid& grid,
+                                       CaptureWhiteReport* report = nullptr);
 
 // Decodes a raw lenslet capture into a light field (views x views of width x height, RGB, per-ray weights from the
 // white image): levels from both metadata, hot-pixel correction, devignetting by the white image, demosaicking,

@@ -1,0 +1,267 @@
+// A white image estimated from the capture itself, for raws that come without one.
+//
+// Every micro-image is the same vignetting profile (the image of the main-lens exit pupil through one micro-lens)
+// times the scene it sees. Dividing each micro-image by its own core brightness, per Bayer phase (so the scene's
+// brightness and colour go), and averaging over thousands of lenses by offset from the lens centre leaves the
+// profile: the scene inside the micro-images differs from lens to lens and averages out, and lens centres fall at
+// every sub-pixel phase, so the offsets are sampled finely. The profile is estimated per tile of the sensor (its
+// shape changes towards the corners of real cameras, where the main lens clips the micro-images) and blended
+// between tile centres. What a single capture cannot show is the smooth main-lens falloff across the sensor (it is
+// indistinguishable from the scene's own brightness): the estimate leaves it in the light field.
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "bayer_preprocess.h"
+#include "lfsp/core/error.h"
+#include "lfsp/decode/lenslet_decoder.h"
+
+namespace lfsp::decode {
+namespace {
+
+constexpr double kBinPixels = 0.25;      // profile bin size
+constexpr double kCoreFraction = 0.3;    // core radius (normalising brightness) as a fraction of the spacing
+constexpr double kReachFraction = 0.62;  // profile radius: beyond the hexagonal cell's corner (spacing / sqrt(3))
+constexpr float kSaturated = 0.98f;      // levelled value from which a pixel counts as clipped
+constexpr double kDimCore = 0.05;        // cores dimmer than this (levelled) count in proportion to brightness
+constexpr double kWhiteLevel = 0.6;      // the synthetic white's core level, as a fraction of the raw range
+
+// The sensor's response per Bayer phase relative to green: normalizedResponses when the metadata has them, else
+// the inverse of the white-balance gains, else flat.
+std::array<double, 4> PhaseResponse(const LytroMetadata& metadata, BayerPattern pattern) {
+  const std::array<int, 4> tile = TileChannels(pattern);
+  std::array<double, 4> response = {1.0, 1.0, 1.0, 1.0};
+  if (const auto& r = metadata.colour.normalized_response; r && r->r > 0 && r->gr > 0 && r->gb > 0 && r->b > 0) {
+    for (int phase = 0; phase < 4; ++phase)
+      response[static_cast<std::size_t>(phase)] = Channel(*r, tile[static_cast<std::size_t>(phase)]) / r->gr;
+  } else if (const auto& g = metadata.colour.white_balance_gain; g && g->r > 0 && g->gr > 0 && g->gb > 0 && g->b > 0) {
+    for (int phase = 0; phase < 4; ++phase)
+      response[static_cast<std::size_t>(phase)] = g->gr / Channel(*g, tile[static_cast<std::size_t>(phase)]);
+  }
+  return response;
+}
+
+// Sums of normalised micro-image values by offset bin, per tile.
+struct ProfileAccumulator {
+  int bins = 0;   // per axis
+  int tiles = 0;  // per axis
+  std::vector<double> sum;
+  std::vector<double> weight;
+  ProfileAccumulator(int bins_per_axis, int tiles_per_axis)
+      : bins(bins_per_axis),
+        tiles(tiles_per_axis),
+        sum(static_cast<std::size_t>(bins_per_axis * bins_per_axis * tiles_per_axis * tiles_per_axis), 0.0),
+        weight(sum.size(), 0.0) {}
+  std::size_t Index(int tile, int by, int bx) const {
+    return (static_cast<std::size_t>(tile) * bins + by) * bins + bx;
+  }
+  void Merge(const ProfileAccumulator& other) {
+    for (std::size_t n = 0; n < sum.size(); ++n) {
+      sum[n] += other.sum[n];
+      weight[n] += other.weight[n];
+    }
+  }
+};
+
+// Adds one lens's micro-image; false (nothing added) when it is clipped, off the sensor or has an empty phase.
+bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double core, int tile,
+             ProfileAccumulator& accumulator) {
+  const int x0 = static_cast<int>(std::floor(cx - reach)), x1 = static_cast<int>(std::ceil(cx + reach));
+  const int y0 = static_cast<int>(std::floor(cy - reach)), y1 = static_cast<int>(std::ceil(cy + reach));
+  if (x0 < 0 || y0 < 0 || x1 >= levelled.cols || y1 >= levelled.rows) return false;
+  std::array<double, 4> core_sum{};
+  std::array<int, 4> core_count{};
+  for (int y = y0; y <= y1; ++y) {
+    const float* row = levelled.ptr<float>(y);
+    for (int x = x0; x <= x1; ++x) {
+      const double r2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+      if (r2 > reach * reach) continue;
+      if (row[x] >= kSaturated) return false;
+      if (r2 <= core * core) {
+        core_sum[static_cast<std::size_t>(BayerPhase(x, y))] += row[x];
+        ++core_count[static_cast<std::size_t>(BayerPhase(x, y))];
+      }
+    }
+  }
+  std::array<double, 4> inverse_core{};
+  double lens_weight = 1.0;
+  for (std::size_t phase = 0; phase < 4; ++phase) {
+    if (core_count[phase] < 1 || !(core_sum[phase] > 0.0)) return false;
+    const double mean = core_sum[phase] / core_count[phase];
+    inverse_core[phase] = 1.0 / mean;
+    lens_weight = std::min(lens_weight, mean / kDimCore);  // dim lenses are noisy: they count less
+  }
+  const double half = 0.5 * (accumulator.bins - 1);
+  for (int y = y0; y <= y1; ++y) {
+    const float* row = levelled.ptr<float>(y);
+    for (int x = x0; x <= x1; ++x) {
+      const double dx = x - cx, dy = y - cy;
+      if (dx * dx + dy * dy > reach * reach) continue;
+      const int bx = static_cast<int>(std::lround(dx / kBinPixels + half));
+      const int by = static_cast<int>(std::lround(dy / kBinPixels + half));
+      if (bx < 0 || by < 0 || bx >= accumulator.bins || by >= accumulator.bins) continue;
+      const double q = std::min(4.0, row[x] * inverse_core[static_cast<std::size_t>(BayerPhase(x, y))]);
+      const std::size_t n = accumulator.Index(tile, by, bx);
+      accumulator.sum[n] += lens_weight * q;
+      accumulator.weight[n] += lens_weight;
+    }
+  }
+  return true;
+}
+
+// One tile's profile: normalised convolution (Gaussian, 0.5 px) of its sums, so sparsely sampled bins borrow from
+// their neighbours; tiles with too few lenses take the whole sensor's profile.
+std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator) {
+  const int bins = accumulator.bins, tiles = accumulator.tiles;
+  auto smooth = [bins](const double* data) {
+    cv::Mat m(bins, bins, CV_64F);
+    std::copy(data, data + static_cast<std::size_t>(bins * bins), m.ptr<double>());
+    cv::GaussianBlur(m, m, cv::Size(0, 0), 0.5 / kBinPixels, 0.0, cv::BORDER_CONSTANT);
+    return m;
+  };
+  cv::Mat global_sum = cv::Mat::zeros(bins, bins, CV_64F), global_weight = cv::Mat::zeros(bins, bins, CV_64F);
+  std::vector<cv::Mat> sums, weights;
+  for (int t = 0; t < tiles * tiles; ++t) {
+    sums.push_back(smooth(&accumulator.sum[accumulator.Index(t, 0, 0)]));
+    weights.push_back(smooth(&accumulator.weight[accumulator.Index(t, 0, 0)]));
+    global_sum += sums.back();
+    global_weight += weights.back();
+  }
+  const double median_weight = [&] {
+    std::vector<double> totals;
+    for (const cv::Mat& w : weights) totals.push_back(cv::sum(w)[0]);
+    std::nth_element(totals.begin(), totals.begin() + static_cast<std::ptrdiff_t>(totals.size() / 2), totals.end());
+    return totals[totals.size() / 2];
+  }();
+  std::vector<cv::Mat> profiles;
+  for (int t = 0; t < tiles * tiles; ++t) {
+    const bool sparse = cv::sum(weights[static_cast<std::size_t>(t)])[0] < 0.25 * median_weight;
+    const cv::Mat& s = sparse ? global_sum : sums[static_cast<std::size_t>(t)];
+    const cv::Mat& w = sparse ? global_weight : weights[static_cast<std::size_t>(t)];
+    cv::Mat profile(bins, bins, CV_32F);
+    for (int y = 0; y < bins; ++y)
+      for (int x = 0; x < bins; ++x)
+        profile.at<float>(y, x) =
+            w.at<double>(y, x) > 1e-9 ? static_cast<float>(s.at<double>(y, x) / w.at<double>(y, x)) : 0.0f;
+    profiles.push_back(profile);
+  }
+  return profiles;
+}
+
+float Bilinear(const cv::Mat& profile, double fx, double fy) {
+  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= profile.cols || y0 + 1 >= profile.rows) return 0.0f;
+  const auto ax = static_cast<float>(fx - x0), ay = static_cast<float>(fy - y0);
+  const float* r0 = profile.ptr<float>(y0);
+  const float* r1 = profile.ptr<float>(y0 + 1);
+  return (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) + ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
+}
+
+}  // namespace
+
+RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata,
+                                       const LensletGrid& grid, CaptureWhiteReport* report) {
+  const RawFormat& format = metadata.RequireRawFormat();
+  if (capture.width != grid.sensor_width || capture.height != grid.sensor_height ||
+      capture.pixels.size() != capture.PixelCount())
+    throw Error(metadata.source + ": capture and lenslet grid differ in size");
+  const PhaseLevels levels = LevelsOf(format, metadata.source);
+  const cv::Mat levelled = ApplyLevels(capture, levels);
+  const double reach = kReachFraction * grid.spacing_x, core = kCoreFraction * grid.spacing_x;
+  const int bins = 2 * static_cast<int>(std::ceil(reach / kBinPixels)) + 3;
+  const long lenses = static_cast<long>(grid.columns) * grid.rows;
+  // Tiles of at least ~2000 lenses each (5 x 5 on full Lytro sensors).
+  const int tiles = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(lenses) / 2000.0)), 1, 5);
+
+  // 1. Accumulate every usable lens, per thread, then merge.
+  ProfileAccumulator total(bins, tiles);
+  long used = 0;
+#pragma omp parallel
+  {
+    ProfileAccumulator local(bins, tiles);
+    long local_used = 0;
+#pragma omp for schedule(dynamic, 4)
+    for (int j = 0; j < grid.rows; ++j)
+      for (int i = 0; i < grid.columns; ++i) {
+        double cx = 0.0, cy = 0.0;
+        grid.Centre(i, j, cx, cy);
+        const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
+        const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
+        if (AddLens(levelled, cx, cy, reach, core, ty * tiles + tx, local)) ++local_used;
+      }
+#pragma omp critical
+    {
+      total.Merge(local);
+      used += local_used;
+    }
+  }
+  if (used < 50)
+    throw Error(metadata.source + ": too few unclipped, lit micro-images (" + std::to_string(used) +
+                ") to estimate the white image from the capture");
+  const std::vector<cv::Mat> profiles = TileProfiles(total);
+
+  // 2. Synthesise: each pixel takes the profile at its offset from the nearest lens, blended between tile centres.
+  const std::array<double, 4> response = PhaseResponse(metadata, format.mosaic);
+  RawImage white;
+  white.width = capture.width;
+  white.height = capture.height;
+  white.pixels.resize(white.PixelCount());
+  const double half = 0.5 * (bins - 1);
+  // The nearest lens of each pixel as LensLabels finds it: lattice coordinates stepped along the row, the rotation
+  // computed once.
+  const double c = std::cos(grid.rotation), sn = std::sin(grid.rotation);
+  const double along_step = c / grid.spacing_x, across_step = -sn / grid.spacing_y;
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < white.height; ++y) {
+    const double ty = std::clamp((y + 0.5) / white.height * tiles - 0.5, 0.0, tiles - 1.0);
+    const int ty0 = std::min(static_cast<int>(ty), tiles - 1), ty1 = std::min(ty0 + 1, tiles - 1);
+    const double ay = ty - ty0;
+    std::uint16_t* out = white.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(white.width);
+    const double dy0 = y - grid.origin_y, dx0 = -grid.origin_x;
+    double along = (c * dx0 + sn * dy0) / grid.spacing_x;
+    double across = (-sn * dx0 + c * dy0) / grid.spacing_y;
+    for (int x = 0; x < white.width; ++x, along += along_step, across += across_step) {
+      // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
+      const int j0 = static_cast<int>(std::floor(across));
+      double best = 1e300, offset_along = 0.0, offset_across = 0.0;
+      for (int j = j0; j <= j0 + 1; ++j) {
+        const double shift = 0.5 * grid.Shift(j);
+        const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
+        const double eb = (across - j) * grid.spacing_y;
+        if (ea * ea + eb * eb < best) {
+          best = ea * ea + eb * eb;
+          offset_along = ea;
+          offset_across = eb;
+        }
+      }
+      const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
+      const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
+      const double tx = std::clamp((x + 0.5) / white.width * tiles - 0.5, 0.0, tiles - 1.0);
+      const int tx0 = std::min(static_cast<int>(tx), tiles - 1), tx1 = std::min(tx0 + 1, tiles - 1);
+      const double ax = tx - tx0;
+      auto at = [&](int tile_y, int tile_x) {
+        return static_cast<double>(Bilinear(profiles[static_cast<std::size_t>(tile_y * tiles + tile_x)], fx, fy));
+      };
+      const double value = (1 - ay) * ((1 - ax) * at(ty0, tx0) + ax * at(ty0, tx1)) +
+                           ay * ((1 - ax) * at(ty1, tx0) + ax * at(ty1, tx1));
+      const int phase = BayerPhase(x, y);
+      const double code = levels.black[static_cast<std::size_t>(phase)] +
+                          kWhiteLevel * std::clamp(value, 0.0, 1.2) * response[static_cast<std::size_t>(phase)] /
+                              levels.scale[static_cast<std::size_t>(phase)];
+      out[x] = static_cast<std::uint16_t>(std::clamp(std::lround(code), 0L, 65535L));
+    }
+  }
+  if (report) {
+    report->lenses = static_cast<int>(lenses);
+    report->lenses_used = static_cast<int>(used);
+    report->tiles = tiles;
+  }
+  return white;
+}
+
+}  // namespace lfsp::decode
