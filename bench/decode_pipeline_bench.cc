@@ -203,4 +203,69 @@ LFSP_BENCH_CASE {
   return c;
 }
 
+// Issue 13: the lattice from the capture itself (no white image), and a decode without one.
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "decode";
+  c.name = "grid-capture-illum";
+  c.input = "Illum capture 7728x5368, planes scene (simulated)";
+  c.target = "<= 1 s";
+  c.repetitions = 3;
+  c.baseline = "grid-model-illum";
+  c.prepare = PrepareCapture;
+  c.run = [] {
+    IllumShot& shot = Shot();
+    const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
+    const decode::LensletGrid grid =
+        decode::FindLensletGrid(grey,
+                                decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width,
+                                                          shot.capture.height),
+                                decode::LensletImageKind::kCapture)
+            .grid;
+    double sum = 0.0;
+    for (int j = 0; j < shot.truth.rows; ++j)
+      for (int i = 0; i < shot.truth.columns; ++i) {
+        double x = 0.0, y = 0.0;
+        grid.Centre(i, j, x, y);
+        const PixelPosition t = shot.truth.Centre(i, j);
+        sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
+      }
+    char text[160];
+    std::snprintf(text, sizeof text, "%d x %d lenses, centres rms vs truth %.4f px", grid.columns, grid.rows,
+                  std::sqrt(sum / (shot.truth.rows * shot.truth.columns)));
+    return std::string(text);
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "decode";
+  c.name = "decode-no-white-illum";
+  c.input = "Illum 7728x5368, no white image -> 15x15x434x625";
+  c.target = "PSNR within 1 dB of decode-illum";
+  c.repetitions = 3;
+  c.baseline = "decode-illum";
+  c.prepare = PrepareCapture;
+  c.run = [] {
+    IllumShot& shot = Shot();
+    decode::DecodeOptions options;
+    options.colour = decode::ColourMode::kLinear;
+    const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
+    const decode::LensletGrid grid =
+        decode::FindLensletGrid(grey,
+                                decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width,
+                                                          shot.capture.height),
+                                decode::LensletImageKind::kCapture)
+            .grid;
+    const decode::RawImage white = decode::EstimateWhiteImageFromCapture(shot.capture, shot.capture_metadata, grid);
+    const decode::PreparedWhite prepared = decode::PrepareWhite(white, shot.capture_metadata, options.colour);
+    const LightField decoded = decode::DecodeLenslet(shot.capture, shot.capture_metadata, prepared, grid, options);
+    char text[160];
+    std::snprintf(text, sizeof text, "grid + white estimate + decode, inner 9x9 PSNR %.2f dB", InnerPsnr(decoded));
+    return std::string(text);
+  };
+  return c;
+}
+
 }  // namespace lfsp::bench

@@ -15,6 +15,8 @@
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/stats.h"
 #include "lfsp/decode/container_info.h"
+#include "lfsp/decode/raw_input.h"
+#include "raw_input_options.h"
 
 namespace lfsp::cli {
 namespace {
@@ -25,6 +27,7 @@ struct InfoOptions {
   int eslf_nu = 0;
   int eslf_nv = 0;
   std::string extract_dir;  // Lytro inputs: write the embedded items here
+  PlainRawArguments plain;  // with --camera, a .png/.tif/.jpg is a plain raw Bayer image
 };
 
 nlohmann::ordered_json StatsJson(const ValueStats& stats) {
@@ -127,9 +130,52 @@ void RunLytroInfo(const InfoOptions& options) {
   }
 }
 
+// A plain raw Bayer image read as `decode` would read it: size, levels, camera, code statistics per Bayer phase.
+void RunPlainRawInfo(const InfoOptions& options) {
+  const decode::RawInput input = decode::ReadPlainRawImage(options.path, ToPlainRawOptions(options.plain));
+  const decode::RawFormat& format = *input.metadata.raw_format;
+  nlohmann::ordered_json info = {{"format", input.format},
+                                 {"width", input.raw.width},
+                                 {"height", input.raw.height},
+                                 {"camera", input.metadata.camera_model},
+                                 {"metadata", input.metadata.schema},
+                                 {"bayer", std::string(decode::ToString(format.mosaic))},
+                                 {"levels", input.levels}};
+  for (int phase = 0; phase < 4; ++phase) {
+    double sum = 0.0;
+    std::uint16_t low = 65535, high = 0;
+    long count = 0;
+    for (int y = phase / 2; y < input.raw.height; y += 2)
+      for (int x = phase % 2; x < input.raw.width; x += 2) {
+        const std::uint16_t code = input.raw.at(y, x);
+        sum += code;
+        low = std::min(low, code);
+        high = std::max(high, code);
+        ++count;
+      }
+    info["phases"].push_back({{"phase", phase}, {"min", low}, {"max", high}, {"mean", count ? sum / count : 0.0}});
+  }
+  if (options.json) {
+    std::cout << info.dump(2) << std::endl;
+    return;
+  }
+  std::printf("%s\n  format       %s\n  size         %d x %d\n  camera       %s (%s)\n  bayer        %s\n  levels       %s\n",
+              options.path.c_str(), input.format.c_str(), input.raw.width, input.raw.height,
+              input.metadata.camera_model.empty() ? "unknown" : input.metadata.camera_model.c_str(),
+              input.metadata.schema.c_str(), std::string(decode::ToString(format.mosaic)).c_str(), input.levels.c_str());
+  for (const auto& phase : info["phases"])
+    std::printf("  phase %d      codes %d .. %d, mean %.1f\n", phase["phase"].get<int>(), phase["min"].get<int>(),
+                phase["max"].get<int>(), phase["mean"].get<double>());
+}
+
 void RunInfo(const InfoOptions& options) {
   const std::filesystem::path path(options.path);
   if (decode::LooksLikeLytroFile(path)) return RunLytroInfo(options);
+  if (!options.plain.camera.empty() || !options.plain.bayer.empty()) {
+    if (!decode::IsPlainRawImagePath(path))
+      throw Error(path.string() + ": --camera/--bayer describe a plain raw image (.png, .tif, .tiff, .jpg, .jpeg)");
+    return RunPlainRawInfo(options);
+  }
   if (!options.extract_dir.empty())
     throw Error("--extract applies to Lytro files only; " + path.string() + " is not one");
   nlohmann::ordered_json info;
@@ -164,6 +210,7 @@ void AddInfoCommand(CLI::App& app) {
   command->add_option("--extract", options->extract_dir,
                       "Lytro files: write the embedded items (JPEG frames, depth maps as PFM, metadata JSON, raw "
                       "payloads) into this folder (default: none, nothing written)");
+  AddPlainRawOptions(command, options->plain);
   command->callback([options] { RunInfo(*options); });
 }
 
