@@ -217,10 +217,9 @@ LFSP_BENCH_CASE {
     IllumShot& shot = Shot();
     const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
     const decode::LensletGrid grid =
-        decode::FindLensletGrid(grey,
-                                decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width,
-                                                          shot.capture.height),
-                                decode::LensletImageKind::kCapture)
+        decode::FindLensletGrid(
+            grey, decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width, shot.capture.height),
+            decode::LensletImageKind::kCapture)
             .grid;
     double sum = 0.0;
     for (int j = 0; j < shot.truth.rows; ++j)
@@ -253,10 +252,9 @@ LFSP_BENCH_CASE {
     options.colour = decode::ColourMode::kLinear;
     const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
     const decode::LensletGrid grid =
-        decode::FindLensletGrid(grey,
-                                decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width,
-                                                          shot.capture.height),
-                                decode::LensletImageKind::kCapture)
+        decode::FindLensletGrid(
+            grey, decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width, shot.capture.height),
+            decode::LensletImageKind::kCapture)
             .grid;
     const decode::RawImage white = decode::EstimateWhiteImageFromCapture(shot.capture, shot.capture_metadata, grid);
     const decode::PreparedWhite prepared = decode::PrepareWhite(white, shot.capture_metadata, options.colour);

@@ -159,10 +159,11 @@ void RunPlainRawInfo(const InfoOptions& options) {
     std::cout << info.dump(2) << std::endl;
     return;
   }
-  std::printf("%s\n  format       %s\n  size         %d x %d\n  camera       %s (%s)\n  bayer        %s\n  levels       %s\n",
-              options.path.c_str(), input.format.c_str(), input.raw.width, input.raw.height,
-              input.metadata.camera_model.empty() ? "unknown" : input.metadata.camera_model.c_str(),
-              input.metadata.schema.c_str(), std::string(decode::ToString(format.mosaic)).c_str(), input.levels.c_str());
+  std::printf(
+      "%s\n  format       %s\n  size         %d x %d\n  camera       %s (%s)\n  bayer        %s\n  levels       %s\n",
+      options.path.c_str(), input.format.c_str(), input.raw.width, input.raw.height,
+      input.metadata.camera_model.empty() ? "unknown" : input.metadata.camera_model.c_str(),
+      input.metadata.schema.c_str(), std::string(decode::ToString(format.mosaic)).c_str(), input.levels.c_str());
   for (const auto& phase : info["phases"])
     std::printf("  phase %d      codes %d .. %d, mean %.1f\n", phase["phase"].get<int>(), phase["min"].get<int>(),
                 phase["max"].get<int>(), phase["mean"].get<double>());

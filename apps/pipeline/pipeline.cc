@@ -164,8 +164,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   StageRunner stages(recolor ? 7 : 6, timings);
 
   // A .png/.tif is a light field (ESLF) unless a camera says it is a raw Bayer mosaic.
-  const bool raw_capture = decode::LooksLikeLytroFile(input) ||
-                           (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
+  const bool raw_capture =
+      decode::LooksLikeLytroFile(input) || (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
   Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
     Bundle out;
     if (raw_capture) {

@@ -30,7 +30,8 @@ WhiteSource WhiteFromDatabase(const RawInput& input, const std::filesystem::path
   WhiteSource white;
   white.raw = ReadWhiteImageRaw(*choice.entry);
   white.metadata = ReadWhiteImageMetadata(*choice.entry);
-  white.summary = {{"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
+  white.summary = {
+      {"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
   return white;
 }
 
@@ -41,12 +42,8 @@ WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, con
   white.metadata = input.metadata;
   white.metadata.source = input.path.string() + " (white image estimated from the capture)";
   white.estimated = true;
-  white.summary = {{"name", "estimated from the capture"},
-                   {"path", input.path.string()},
-                   {"why", why},
-                   {"lenses_used", report.lenses_used},
-                   {"lenses", report.lenses},
-                   {"tiles", report.tiles}};
+  white.summary = {{"name", "estimated from the capture"}, {"path", input.path.string()}, {"why", why},
+                   {"lenses_used", report.lenses_used},    {"lenses", report.lenses},     {"tiles", report.tiles}};
   return white;
 }
 
@@ -119,25 +116,24 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   result.light_field.metadata["decode"]["white_estimated"] = white->estimated;
 
   const LightFieldShape& shape = result.light_field.shape();
-  result.summary = {
-      {"capture", capture_path.string()},
-      {"input_format", input.format},
-      {"levels", input.levels},
-      {"camera", {{"model", metadata.camera_model}, {"serial", metadata.serial}}},
-      {"white_image", white->summary},
-      {"grid", estimate.grid.ToJson()},
-      {"light_field",
-       {{"nu", shape.nu},
-        {"nv", shape.nv},
-        {"width", shape.width},
-        {"height", shape.height},
-        {"transfer", ToString(result.light_field.transfer)}}},
-      {"decode", report.ToJson()},
-      {"seconds",
-       {{"read", read_seconds},
-        {"white_image", white_seconds},
-        {"white_preparation_and_grid", grid_seconds},
-        {"total", SecondsSince(start)}}}};
+  result.summary = {{"capture", capture_path.string()},
+                    {"input_format", input.format},
+                    {"levels", input.levels},
+                    {"camera", {{"model", metadata.camera_model}, {"serial", metadata.serial}}},
+                    {"white_image", white->summary},
+                    {"grid", estimate.grid.ToJson()},
+                    {"light_field",
+                     {{"nu", shape.nu},
+                      {"nv", shape.nv},
+                      {"width", shape.width},
+                      {"height", shape.height},
+                      {"transfer", ToString(result.light_field.transfer)}}},
+                    {"decode", report.ToJson()},
+                    {"seconds",
+                     {{"read", read_seconds},
+                      {"white_image", white_seconds},
+                      {"white_preparation_and_grid", grid_seconds},
+                      {"total", SecondsSince(start)}}}};
   return result;
 }
 

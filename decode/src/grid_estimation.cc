@@ -11,8 +11,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "lfsp/core/error.h"
 #include "lattice.h"
+#include "lfsp/core/error.h"
 #include "lfsp/decode/lenslet_grid.h"
 
 namespace lfsp::decode {

@@ -78,7 +78,8 @@ std::string_view ToString(LensletImageKind kind) {
 }
 
 LensletImageKind LensletImageKindFromString(const std::string& name) {
-  for (const LensletImageKind kind : {LensletImageKind::kAuto, LensletImageKind::kWhiteImage, LensletImageKind::kCapture})
+  for (const LensletImageKind kind :
+       {LensletImageKind::kAuto, LensletImageKind::kWhiteImage, LensletImageKind::kCapture})
     if (ToString(kind) == name) return kind;
   throw Error("image kind '" + name + "': unknown (expected auto, white or capture)");
 }

@@ -179,10 +179,9 @@ std::array<Frequency, 2> CoarseReciprocal(const cv::Mat& contrast, double min_sp
   // A harmonic ring of a coarser lattice also looks hexagonal: prefer the coarser lattice when it is clearly there.
   for (bool coarser = true; coarser;) {
     coarser = false;
-    const std::array<Frequency, 2> subharmonics = {
-        Frequency{best_k.x / 2, best_k.y / 2},
-        Frequency{best_k.Rotated(std::numbers::pi / 6).x / std::sqrt(3.0),
-                  best_k.Rotated(std::numbers::pi / 6).y / std::sqrt(3.0)}};
+    const std::array<Frequency, 2> subharmonics = {Frequency{best_k.x / 2, best_k.y / 2},
+                                                   Frequency{best_k.Rotated(std::numbers::pi / 6).x / std::sqrt(3.0),
+                                                             best_k.Rotated(std::numbers::pi / 6).y / std::sqrt(3.0)}};
     for (const Frequency& candidate : subharmonics) {
       if (candidate.Norm() < f_min) continue;
       if (HexScore(power, candidate) >= 0.2 * best) {
@@ -327,8 +326,8 @@ PhasePlane FitPhasePlane(const std::vector<BlockPhases>& blocks, int m, Frequenc
     double sum_squares = 0.0, sum_weights = 0.0;
     std::vector<double> deviation(blocks.size());
     for (std::size_t n = 0; n < blocks.size(); ++n) {
-      const double model = offset + kTwoPi * (solution(1) * (blocks[n].cx - centre_x) +
-                                              solution(2) * (blocks[n].cy - centre_y));
+      const double model =
+          offset + kTwoPi * (solution(1) * (blocks[n].cx - centre_x) + solution(2) * (blocks[n].cy - centre_y));
       deviation[n] = std::abs(Wrap(level + Wrap(residual[n] - level) - model));
       if (weight[n] > 0.0) deviations.emplace_back(deviation[n], weight[n]);
     }
@@ -428,8 +427,10 @@ GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::opti
     const std::vector<BlockPhases> blocks = DemodulateBlocks(contrast, k, block, step, columns, rows);
     for (int m = 0; m < 3; ++m) planes[m] = FitPhasePlane(blocks, m, k[m], columns, rows, step);
     // The three vectors are not independent (k3 = k2 - k1): average the two estimates of each.
-    k[0] = {0.5 * (planes[0].k.x + planes[1].k.x - planes[2].k.x), 0.5 * (planes[0].k.y + planes[1].k.y - planes[2].k.y)};
-    k[1] = {0.5 * (planes[1].k.x + planes[0].k.x + planes[2].k.x), 0.5 * (planes[1].k.y + planes[0].k.y + planes[2].k.y)};
+    k[0] = {0.5 * (planes[0].k.x + planes[1].k.x - planes[2].k.x),
+            0.5 * (planes[0].k.y + planes[1].k.y - planes[2].k.y)};
+    k[1] = {0.5 * (planes[1].k.x + planes[0].k.x + planes[2].k.x),
+            0.5 * (planes[1].k.y + planes[0].k.y + planes[2].k.y)};
     k[2] = {k[1].x - k[0].x, k[1].y - k[0].y};
   }
 

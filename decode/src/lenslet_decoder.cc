@@ -11,8 +11,8 @@
 
 #include "bayer_preprocess.h"
 #include "lenslet_slicing.h"
-#include "lfsp/decode/lattice_pattern.h"
 #include "lfsp/core/error.h"
+#include "lfsp/decode/lattice_pattern.h"
 
 namespace lfsp::decode {
 namespace {
@@ -127,8 +127,13 @@ DecodedGeometry DecodedGeometryFor(const LensletGrid& grid) {
 }
 
 nlohmann::json DecodeReport::ToJson() const {
-  return {{"demosaic", demosaic},         {"colour", colour},   {"hot_pixels_corrected", hot_pixels_corrected},
-          {"output_scale", output_scale}, {"row_alternation", row_alternation}, {"seconds", seconds}, {"cpu_seconds", cpu_seconds}};
+  return {{"demosaic", demosaic},
+          {"colour", colour},
+          {"hot_pixels_corrected", hot_pixels_corrected},
+          {"output_scale", output_scale},
+          {"row_alternation", row_alternation},
+          {"seconds", seconds},
+          {"cpu_seconds", cpu_seconds}};
 }
 
 PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,

@@ -85,14 +85,22 @@ cv::Mat LensLabels(const LensletGrid& grid) {
 }
 
 nlohmann::json LensletGrid::ToJson() const {
-  return {{"spacing_x", spacing_x},       {"spacing_y", spacing_y},
-          {"rotation", rotation},         {"origin_x", origin_x},
-          {"origin_y", origin_y},         {"row_shift", row_shift},
-          {"columns", columns},           {"rows", rows},
-          {"sensor_width", sensor_width}, {"sensor_height", sensor_height},
-          {"rms_residual", rms_residual}, {"lenses_measured", lenses_measured},
-          {"lenses_used", lenses_used},   {"fit_method", fit_method},
-          {"blocks", blocks},             {"blocks_used", blocks_used}};
+  return {{"spacing_x", spacing_x},
+          {"spacing_y", spacing_y},
+          {"rotation", rotation},
+          {"origin_x", origin_x},
+          {"origin_y", origin_y},
+          {"row_shift", row_shift},
+          {"columns", columns},
+          {"rows", rows},
+          {"sensor_width", sensor_width},
+          {"sensor_height", sensor_height},
+          {"rms_residual", rms_residual},
+          {"lenses_measured", lenses_measured},
+          {"lenses_used", lenses_used},
+          {"fit_method", fit_method},
+          {"blocks", blocks},
+          {"blocks_used", blocks_used}};
 }
 
 LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string& source) {

@@ -169,7 +169,8 @@ std::optional<int> StepAt(const nlohmann::json& m, std::string_view path, const 
 BayerPattern BayerPatternFromString(const std::string& name) {
   std::string upper = name;
   for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  for (const BayerPattern pattern : {BayerPattern::kRGGB, BayerPattern::kGRBG, BayerPattern::kGBRG, BayerPattern::kBGGR})
+  for (const BayerPattern pattern :
+       {BayerPattern::kRGGB, BayerPattern::kGRBG, BayerPattern::kGBRG, BayerPattern::kBGGR})
     if (ToString(pattern) == upper) return pattern;
   throw Error("Bayer pattern '" + name + "': unknown (expected rggb, grbg, gbrg or bggr)");
 }

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <vector>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
@@ -42,16 +42,33 @@ struct CameraFacts {
 
 const CameraFacts& FactsFor(const std::string& camera, const std::string& source) {
   static const CameraFacts kF01 = {
-      "F01", BayerPattern::kBGGR, 12, 168.0, 4095.0, 1.389859962463379e-05, 1.3999999761581417e-06,
-      0.0019290975760668516, 1.0004994869232178,
+      "F01",
+      BayerPattern::kBGGR,
+      12,
+      168.0,
+      4095.0,
+      1.389859962463379e-05,
+      1.3999999761581417e-06,
+      0.0019290975760668516,
+      1.0004994869232178,
       {3.1115827560424805, -1.9393929243087769, -0.172189861536026, -0.3629055917263031, 1.6408803462982178,
        -0.27797481417655945, 0.078967012465000153, -1.1558042764663696, 2.0768373012542725},
-      {1.0, 1.1171875, 1.1171875, 1.72265625}, 0.416660010814666748};
+      {1.0, 1.1171875, 1.1171875, 1.72265625},
+      0.416660010814666748};
   static const CameraFacts kIllum = {
-      "ILLUM", BayerPattern::kGRBG, 10, 64.0, 1023.0, 2e-05, 1.4e-06, -0.0008558133849874139, 1.0003466606140137,
+      "ILLUM",
+      BayerPattern::kGRBG,
+      10,
+      64.0,
+      1023.0,
+      2e-05,
+      1.4e-06,
+      -0.0008558133849874139,
+      1.0003466606140137,
       {2.244826316833496, -0.9087038040161133, -0.33612245321273804, -0.5600823760032654, 1.7229819297790527,
        -0.16289949417114258, -0.5868203043937683, -1.3248286247253418, 2.911648750305176},
-      {1.0, 1.0, 1.0, 1.0}, 1.0};
+      {1.0, 1.0, 1.0, 1.0},
+      1.0};
   const std::string name = Lower(camera);
   if (name == "f01") return kF01;
   if (name == "illum") return kIllum;
@@ -105,7 +122,8 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
     for (int c = 1; c < std::min(3, image.pixels.channels()); ++c)
       if (cv::norm(planes[0], planes[static_cast<std::size_t>(c)], cv::NORM_INF) > 0.0)
         throw Error(name + ": a raw Bayer image has one channel; this one has " +
-                    std::to_string(image.pixels.channels()) + " different ones (a colour picture is not a raw lenslet "
+                    std::to_string(image.pixels.channels()) +
+                    " different ones (a colour picture is not a raw lenslet "
                     "image)");
     image.pixels = planes[0];
   }
@@ -149,20 +167,20 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
 
   const bool sensor_dump = image.bit_depth == 16 && input.has_camera_metadata && largest <= format.white.gr;
   double black = sensor_dump ? format.black.gr : 0.0, white = sensor_dump ? format.white.gr : full_scale;
-  input.levels = sensor_dump ? "the camera's levels (codes fit its " + std::to_string(static_cast<int>(white)) +
-                                   " white level)"
-                             : "the file's full code range";
+  input.levels = sensor_dump
+                     ? "the camera's levels (codes fit its " + std::to_string(static_cast<int>(white)) + " white level)"
+                     : "the file's full code range";
   if (options.black || options.white) input.levels = "given levels";
   black = options.black.value_or(black);
   white = options.white.value_or(white);
   if (!(black >= 0.0 && white > black && white <= full_scale))
     throw Error(name + ": levels black " + std::to_string(black) + " / white " + std::to_string(white) +
-                " out of range for a " + std::to_string(image.bit_depth) + "-bit image (need 0 <= black < white <= " +
-                std::to_string(static_cast<int>(full_scale)) + ")");
+                " out of range for a " + std::to_string(image.bit_depth) +
+                "-bit image (need 0 <= black < white <= " + std::to_string(static_cast<int>(full_scale)) + ")");
   format.black = Uniform(black);
   format.white = Uniform(white);
-  input.levels += ": black " + std::to_string(static_cast<int>(black)) + ", white " +
-                  std::to_string(static_cast<int>(white));
+  input.levels +=
+      ": black " + std::to_string(static_cast<int>(black)) + ", white " + std::to_string(static_cast<int>(white));
   return input;
 }
 

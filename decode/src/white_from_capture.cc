@@ -57,9 +57,7 @@ struct ProfileAccumulator {
         tiles(tiles_per_axis),
         sum(static_cast<std::size_t>(bins_per_axis * bins_per_axis * tiles_per_axis * tiles_per_axis), 0.0),
         weight(sum.size(), 0.0) {}
-  std::size_t Index(int tile, int by, int bx) const {
-    return (static_cast<std::size_t>(tile) * bins + by) * bins + bx;
-  }
+  std::size_t Index(int tile, int by, int bx) const { return (static_cast<std::size_t>(tile) * bins + by) * bins + bx; }
   void Merge(const ProfileAccumulator& other) {
     for (std::size_t n = 0; n < sum.size(); ++n) {
       sum[n] += other.sum[n];
@@ -164,8 +162,8 @@ float Bilinear(const cv::Mat& profile, double fx, double fy) {
 
 }  // namespace
 
-RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata,
-                                       const LensletGrid& grid, CaptureWhiteReport* report) {
+RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata, const LensletGrid& grid,
+                                       CaptureWhiteReport* report) {
   const RawFormat& format = metadata.RequireRawFormat();
   if (capture.width != grid.sensor_width || capture.height != grid.sensor_height ||
       capture.pixels.size() != capture.PixelCount())
@@ -247,8 +245,8 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
       auto at = [&](int tile_y, int tile_x) {
         return static_cast<double>(Bilinear(profiles[static_cast<std::size_t>(tile_y * tiles + tile_x)], fx, fy));
       };
-      const double value = (1 - ay) * ((1 - ax) * at(ty0, tx0) + ax * at(ty0, tx1)) +
-                           ay * ((1 - ax) * at(ty1, tx0) + ax * at(ty1, tx1));
+      const double value =
+          (1 - ay) * ((1 - ax) * at(ty0, tx0) + ax * at(ty0, tx1)) + ay * ((1 - ax) * at(ty1, tx0) + ax * at(ty1, tx1));
       const int phase = BayerPhase(x, y);
       const double code = levels.black[static_cast<std::size_t>(phase)] +
                           kWhiteLevel * std::clamp(value, 0.0, 1.2) * response[static_cast<std::size_t>(phase)] /

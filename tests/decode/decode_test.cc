@@ -8,8 +8,8 @@
 #include <opencv2/core.hpp>
 
 #include "lfsp/core/error.h"
-#include "lfsp/decode/lenslet_decoder.h"
 #include "lfsp/decode/lattice_pattern.h"
+#include "lfsp/decode/lenslet_decoder.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/simulate/lytro_writer.h"
 #include "lfsp/simulate/raw_capture.h"
@@ -284,13 +284,14 @@ TEST_F(CropIllumDecode, WithoutAWhiteImageWithin1DbOfTheWhiteImageDecode) {
   EXPECT_GT(report.lenses_used, report.lenses / 2);
   DecodeOptions options;
   options.colour = ColourMode::kLinear;
-  const LightField estimated = DecodeLenslet(capture, shot_->capture_metadata, white, shot_->capture_metadata, grid,
-                                             options);
+  const LightField estimated =
+      DecodeLenslet(capture, shot_->capture_metadata, white, shot_->capture_metadata, grid, options);
   const Quality with_white = InnerViewPsnr(Decode(*shot_, *grid_, {}), shot_->truth.light_field, 4);
   const Quality without = InnerViewPsnr(estimated, shot_->truth.light_field, 4);
-  std::printf("  inner 9x9 views: with white image %.2f dB, estimated from the capture %.2f dB (%d of %d lenses, "
-              "%d x %d tiles)\n",
-              with_white.psnr, without.psnr, report.lenses_used, report.lenses, report.tiles, report.tiles);
+  std::printf(
+      "  inner 9x9 views: with white image %.2f dB, estimated from the capture %.2f dB (%d of %d lenses, "
+      "%d x %d tiles)\n",
+      with_white.psnr, without.psnr, report.lenses_used, report.lenses, report.tiles, report.tiles);
   EXPECT_GE(without.psnr, with_white.psnr - 1.0);
 }
 

@@ -28,10 +28,10 @@ struct RawInput {
   std::filesystem::path path;
   std::string format;  // "LFP container", "raw + metadata pair", "plain raw image (8-bit PNG)", ...
   RawImage raw;
-  LytroMetadata metadata;    // from the file, or NominalMetadata for a plain image
-  bool white_image = false;  // a Lytro modulation (white) image
+  LytroMetadata metadata;            // from the file, or NominalMetadata for a plain image
+  bool white_image = false;          // a Lytro modulation (white) image
   bool has_camera_metadata = false;  // false: a plain image without --camera (no optics, no colour)
-  std::string levels;        // where the black and white levels came from, for the one-line report
+  std::string levels;                // where the black and white levels came from, for the one-line report
 };
 
 // True for the extensions of plain raw images: .png .tif .tiff .jpg .jpeg (any case).
