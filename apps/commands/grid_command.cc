@@ -59,7 +59,12 @@ void RunGrid(const GridCommandOptions& options) {
   if (kind == decode::LensletImageKind::kAuto && !decode::IsPlainRawImagePath(input.path))
     kind = decode::LensletImageKind::kCapture;  // a Lytro capture
   const cv::Mat grey = decode::WhiteImageToGrey(input.raw, *input.metadata.raw_format, options.input);
-  const decode::GridEstimate estimate = decode::FindLensletGrid(grey, GuessFor(input), kind);
+  decode::GridEstimate estimate;
+  try {
+    estimate = decode::FindLensletGrid(grey, GuessFor(input), kind);
+  } catch (const Error& e) {
+    throw Error(options.input + ": " + e.what());
+  }
   const decode::LensletGrid& grid = estimate.grid;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

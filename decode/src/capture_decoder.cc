@@ -52,7 +52,11 @@ GridEstimate GridFromCapture(const RawInput& input) {
   const cv::Mat grey = WhiteImageToGrey(input.raw, input.metadata.RequireRawFormat(), input.path.string());
   std::optional<GridGuess> guess;
   if (input.metadata.mla) guess = GuessFromMetadata(input.metadata, input.raw.width, input.raw.height);
-  return FindLensletGrid(grey, guess, LensletImageKind::kCapture);
+  try {
+    return FindLensletGrid(grey, guess, LensletImageKind::kCapture);
+  } catch (const Error& e) {
+    throw Error(input.path.string() + ": " + e.what());
+  }
 }
 
 }  // namespace

@@ -32,6 +32,7 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
+constexpr double kMinPeakContrast = 100.0;  // whitened power each first-ring peak of a lattice must reach
 
 struct Frequency {
   double x = 0.0;  // cycles per pixel
@@ -192,6 +193,13 @@ std::array<Frequency, 2> CoarseReciprocal(const cv::Mat& contrast, double min_sp
       }
     }
   }
+  // A lenslet image's three peaks stand 10^4..10^6 times above the spectrum's median at their radius (measured on real
+  // and simulated F01 and Illum images); the best hexagon in a photograph or in noise reaches about 8.
+  const double weakest = std::min({PowerNear(power, best_k), PowerNear(power, best_k.Rotated(std::numbers::pi / 3)),
+                                   PowerNear(power, best_k.Rotated(2 * std::numbers::pi / 3))});
+  if (weakest < kMinPeakContrast)
+    throw Error("lenslet grid: the image shows no micro-lens lattice (its strongest hexagonal spectral peaks are " +
+                std::to_string(static_cast<int>(weakest)) + " x the background; a lenslet image's exceed 10000)");
   const Frequency k1 = RefinePeak(power, best_k);
   const Frequency k2 = RefinePeak(power, k1.Rotated(std::numbers::pi / 3));
   return {k1, k2};
