@@ -213,48 +213,61 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
   white.height = capture.height;
   white.pixels.resize(white.PixelCount());
   const double half = 0.5 * (bins - 1);
-  // The nearest lens of each pixel as LensLabels finds it: lattice coordinates stepped along the row, the rotation
-  // computed once.
+  // The tile profiles blended once per patch of the sensor (the blend changes over a tile, ~1500 px), then one
+  // lookup per pixel; the nearest lens of each pixel as LensLabels finds it, lattice coordinates stepped along rows.
+  constexpr int kPatch = 128;
+  const int patches_x = (white.width + kPatch - 1) / kPatch, patches_y = (white.height + kPatch - 1) / kPatch;
   const double c = std::cos(grid.rotation), sn = std::sin(grid.rotation);
   const double along_step = c / grid.spacing_x, across_step = -sn / grid.spacing_y;
-#pragma omp parallel for schedule(static)
-  for (int y = 0; y < white.height; ++y) {
-    const double ty = std::clamp((y + 0.5) / white.height * tiles - 0.5, 0.0, tiles - 1.0);
-    const int ty0 = std::min(static_cast<int>(ty), tiles - 1), ty1 = std::min(ty0 + 1, tiles - 1);
-    const double ay = ty - ty0;
-    std::uint16_t* out = white.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(white.width);
-    const double dy0 = y - grid.origin_y, dx0 = -grid.origin_x;
-    double along = (c * dx0 + sn * dy0) / grid.spacing_x;
-    double across = (-sn * dx0 + c * dy0) / grid.spacing_y;
-    for (int x = 0; x < white.width; ++x, along += along_step, across += across_step) {
-      // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
-      const int j0 = static_cast<int>(std::floor(across));
-      double best = 1e300, offset_along = 0.0, offset_across = 0.0;
-      for (int j = j0; j <= j0 + 1; ++j) {
-        const double shift = 0.5 * grid.Shift(j);
-        const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
-        const double eb = (across - j) * grid.spacing_y;
-        if (ea * ea + eb * eb < best) {
-          best = ea * ea + eb * eb;
-          offset_along = ea;
-          offset_across = eb;
+  std::array<float, 4> phase_scale{}, phase_black{};
+  for (std::size_t phase = 0; phase < 4; ++phase) {
+    phase_scale[phase] = static_cast<float>(kWhiteLevel * response[phase] / levels.scale[phase]);
+    phase_black[phase] = levels.black[phase];
+  }
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int patch = 0; patch < patches_x * patches_y; ++patch) {
+    const int x0 = (patch % patches_x) * kPatch, y0 = (patch / patches_x) * kPatch;
+    const int x1 = std::min(white.width, x0 + kPatch), y1 = std::min(white.height, y0 + kPatch);
+    // Bilinear weights of the four tile centres around the patch centre.
+    auto tile_coordinate = [tiles](double position, int size) {
+      return std::clamp((position + 0.5) / size * tiles - 0.5, 0.0, tiles - 1.0);
+    };
+    const double tx = tile_coordinate(0.5 * (x0 + x1 - 1), white.width);
+    const double ty = tile_coordinate(0.5 * (y0 + y1 - 1), white.height);
+    const int tx0 = static_cast<int>(tx), ty0 = static_cast<int>(ty);
+    const int tx1 = std::min(tx0 + 1, tiles - 1), ty1 = std::min(ty0 + 1, tiles - 1);
+    const double ax = tx - tx0, ay = ty - ty0;
+    auto tile = [&](int t_y, int t_x) -> const cv::Mat& {
+      return profiles[static_cast<std::size_t>(t_y * tiles + t_x)];
+    };
+    cv::Mat profile = (1 - ay) * (1 - ax) * tile(ty0, tx0) + (1 - ay) * ax * tile(ty0, tx1) +
+                      ay * (1 - ax) * tile(ty1, tx0) + ay * ax * tile(ty1, tx1);
+    for (int y = y0; y < y1; ++y) {
+      std::uint16_t* out = white.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(white.width);
+      const double dy = y - grid.origin_y, dx = x0 - grid.origin_x;
+      double along = (c * dx + sn * dy) / grid.spacing_x;
+      double across = (-sn * dx + c * dy) / grid.spacing_y;
+      for (int x = x0; x < x1; ++x, along += along_step, across += across_step) {
+        // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
+        const int j0 = static_cast<int>(std::floor(across));
+        double best = 1e300, offset_along = 0.0, offset_across = 0.0;
+        for (int j = j0; j <= j0 + 1; ++j) {
+          const double shift = 0.5 * grid.Shift(j);
+          const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
+          const double eb = (across - j) * grid.spacing_y;
+          if (ea * ea + eb * eb < best) {
+            best = ea * ea + eb * eb;
+            offset_along = ea;
+            offset_across = eb;
+          }
         }
+        const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
+        const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
+        const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
+        const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
+        out[x] = static_cast<std::uint16_t>(
+            std::clamp(std::lround(phase_black[phase] + value * phase_scale[phase]), 0L, 65535L));
       }
-      const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
-      const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
-      const double tx = std::clamp((x + 0.5) / white.width * tiles - 0.5, 0.0, tiles - 1.0);
-      const int tx0 = std::min(static_cast<int>(tx), tiles - 1), tx1 = std::min(tx0 + 1, tiles - 1);
-      const double ax = tx - tx0;
-      auto at = [&](int tile_y, int tile_x) {
-        return static_cast<double>(Bilinear(profiles[static_cast<std::size_t>(tile_y * tiles + tile_x)], fx, fy));
-      };
-      const double value =
-          (1 - ay) * ((1 - ax) * at(ty0, tx0) + ax * at(ty0, tx1)) + ay * ((1 - ax) * at(ty1, tx0) + ax * at(ty1, tx1));
-      const int phase = BayerPhase(x, y);
-      const double code = levels.black[static_cast<std::size_t>(phase)] +
-                          kWhiteLevel * std::clamp(value, 0.0, 1.2) * response[static_cast<std::size_t>(phase)] /
-                              levels.scale[static_cast<std::size_t>(phase)];
-      out[x] = static_cast<std::uint16_t>(std::clamp(std::lround(code), 0L, 65535L));
     }
   }
   if (report) {
