@@ -23,24 +23,11 @@ std::string Lower(std::string text) {
 
 BayerValues Uniform(double value) { return {value, value, value, value}; }
 
-// The facts a decoder needs about each camera, as the real files state them (F01: ../shared/data/lytro
-// f01_frame_metadata.json; Illum: illum_demo.LFP and its white-image TXT).
-struct CameraFacts {
-  const char* model;
-  BayerPattern mosaic;
-  int bits;
-  double black;
-  double white;
-  double lens_pitch;   // m
-  double pixel_pitch;  // m
-  double rotation;     // rad
-  double scale_y;
-  std::array<double, 9> ccm;
-  BayerValues white_balance;
-  double gamma;
-};
+std::string Extension(const std::filesystem::path& path) { return Lower(path.extension().string()); }
 
-const CameraFacts& FactsFor(const std::string& camera, const std::string& source) {
+}  // namespace
+
+const CameraFacts& NominalCameraFacts(const std::string& camera, const std::string& source) {
   static const CameraFacts kF01 = {
       "F01",
       BayerPattern::kBGGR,
@@ -54,6 +41,7 @@ const CameraFacts& FactsFor(const std::string& camera, const std::string& source
       {3.1115827560424805, -1.9393929243087769, -0.172189861536026, -0.3629055917263031, 1.6408803462982178,
        -0.27797481417655945, 0.078967012465000153, -1.1558042764663696, 2.0768373012542725},
       {1.0, 1.1171875, 1.1171875, 1.72265625},
+      std::nullopt,
       0.416660010814666748};
   static const CameraFacts kIllum = {
       "ILLUM",
@@ -68,19 +56,16 @@ const CameraFacts& FactsFor(const std::string& camera, const std::string& source
       {2.244826316833496, -0.9087038040161133, -0.33612245321273804, -0.5600823760032654, 1.7229819297790527,
        -0.16289949417114258, -0.5868203043937683, -1.3248286247253418, 2.911648750305176},
       {1.0, 1.0, 1.0, 1.0},
-      1.0};
+      BayerValues{0.7571942210197449, 1.0, 1.0, 0.7217861413955688},
+      std::nullopt};
   const std::string name = Lower(camera);
   if (name == "f01") return kF01;
   if (name == "illum") return kIllum;
   throw Error(source + ": camera '" + camera + "' unknown (expected f01 or illum)");
 }
 
-std::string Extension(const std::filesystem::path& path) { return Lower(path.extension().string()); }
-
-}  // namespace
-
 LytroMetadata NominalMetadata(const std::string& camera, int width, int height, const std::string& source) {
-  const CameraFacts& facts = FactsFor(camera, source);
+  const CameraFacts& facts = NominalCameraFacts(camera, source);
   LytroMetadata metadata;
   metadata.source = source;
   metadata.schema = "nominal " + std::string(facts.model) + " metadata (none in the file)";
@@ -102,6 +87,7 @@ LytroMetadata NominalMetadata(const std::string& camera, int width, int height, 
   metadata.mla = mla;
   metadata.colour.ccm = facts.ccm;
   metadata.colour.white_balance_gain = facts.white_balance;
+  metadata.colour.normalized_response = facts.normalized_response;
   metadata.colour.gamma = facts.gamma;
   return metadata;
 }

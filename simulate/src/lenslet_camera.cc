@@ -5,34 +5,46 @@
 #include <numbers>
 
 #include "lfsp/core/error.h"
+#include "lfsp/decode/raw_input.h"
 
 namespace lfsp::simulate {
 namespace {
 
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 
+// The sensor, micro-lens and colour facts that decode also uses for raw images without metadata (one copy, in
+// decode::NominalCameraFacts, from the real files).
+void ApplyCameraFacts(const decode::CameraFacts& facts, CameraModel& c) {
+  c.pixel_pitch = facts.pixel_pitch;
+  c.bits = facts.bits;
+  c.bayer = decode::ToString(facts.mosaic) == "BGGR" ? "bggr" : "grbg";
+  c.black = static_cast<int>(facts.black);
+  c.white = static_cast<int>(facts.white);
+  c.ccm = facts.ccm;
+  c.lens_pitch = facts.lens_pitch;
+  c.rotation = facts.rotation;
+  c.scale_x = 1.0;
+  c.scale_y = facts.scale_y;
+  if (facts.normalized_response) {
+    c.response_r = facts.normalized_response->r;
+    c.response_b = facts.normalized_response->b;
+  } else {
+    // The inverse of the white-balance gains, relative to green.
+    c.response_r = facts.white_balance.gr / facts.white_balance.r;
+    c.response_b = facts.white_balance.gr / facts.white_balance.b;
+  }
+}
+
 // Values from the real Illum LFR (../shared/data/lytro/illum_demo.LFP) and Illum white-image TXT.
 CameraModel IllumOptics() {
   CameraModel c;
+  ApplyCameraFacts(decode::NominalCameraFacts("illum", "camera preset"), c);
   c.model = "ILLUM";
   c.white_model = "B01";
   c.firmware = "1.1.0 (31)";
   c.serial = "B5151500001";
   c.sensor_serial = "0B320406";
-  c.pixel_pitch = 1.4e-6;
-  c.bits = 10;
-  c.bayer = "grbg";
-  c.black = 64;
-  c.white = 1023;
-  c.response_r = 0.7571942210197449;
-  c.response_b = 0.7217861413955688;
-  c.ccm = {2.244826316833496,    -0.9087038040161133, -0.33612245321273804, -0.5600823760032654, 1.7229819297790527,
-           -0.16289949417114258, -0.5868203043937683, -1.3248286247253418,  2.911648750305176};
   c.iso = 122;
-  c.lens_pitch = 2e-5;
-  c.rotation = -0.0008558133849874139;
-  c.scale_x = 1.0;
-  c.scale_y = 1.0003466606140137;
   c.sensor_offset_x = 1.440673828125e-06;
   c.sensor_offset_y = 6.261034965515137e-06;
   c.sensor_offset_z = 3.7e-05;
@@ -63,21 +75,9 @@ CameraModel F01() {
   c.sensor_serial = "0x0a1b2c3d";
   c.sensor_width = 3280;
   c.sensor_height = 3280;
-  c.pixel_pitch = 1.3999999761581417e-06;
-  c.bits = 12;
-  c.bayer = "bggr";
-  c.black = 168;
-  c.white = 4095;
-  // Inverse of the real white-balance gains (r 1, gr 1.1171875, b 1.72265625) relative to green.
-  c.response_r = 1.1171875;
-  c.response_b = 1.1171875 / 1.72265625;
-  c.ccm = {3.1115827560424805,   -1.9393929243087769,  -0.172189861536026,  -0.3629055917263031, 1.6408803462982178,
-           -0.27797481417655945, 0.078967012465000153, -1.1558042764663696, 2.0768373012542725};
+  // Sensor, micro-lens array and colour (the responses are the inverse of the real white-balance gains).
+  ApplyCameraFacts(decode::NominalCameraFacts("f01", "camera preset"), c);
   c.iso = 200;
-  c.lens_pitch = 1.389859962463379e-05;
-  c.rotation = 0.0019290975760668516;
-  c.scale_x = 1.0;
-  c.scale_y = 1.0004994869232178;
   c.sensor_offset_x = -2.7138671874999998e-06;
   c.sensor_offset_y = 5.6601560115814212e-07;
   c.sensor_offset_z = 2.5000000000000001e-05;

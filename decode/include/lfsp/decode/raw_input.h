@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -16,6 +17,26 @@ struct PlainRawOptions {
   std::optional<double> black;        // overrides the black level (raw code)
   std::optional<double> white;        // overrides the white (saturation) level (raw code)
 };
+
+// What a decoder (and the simulator) needs to know about each Lytro camera, as the real files state it (F01:
+// ../shared/data/lytro/f01_frame_metadata.json; Illum: illum_demo.LFP and its white-image TXT).
+struct CameraFacts {
+  const char* model;  // "F01", "ILLUM"
+  BayerPattern mosaic;
+  int bits;
+  double black;        // raw code
+  double white;        // raw code
+  double lens_pitch;   // m
+  double pixel_pitch;  // m
+  double rotation;     // rad, devices.mla.rotation
+  double scale_y;      // devices.mla.scaleFactor.y
+  std::array<double, 9> ccm;
+  BayerValues white_balance;                       // image.color.whiteBalanceGain
+  std::optional<BayerValues> normalized_response;  // devices.sensor.normalizedResponses (white-image TXT)
+  std::optional<double> gamma;
+};
+// "f01" or "illum" (any case); lfsp::Error naming `source` otherwise.
+const CameraFacts& NominalCameraFacts(const std::string& camera, const std::string& source);
 
 // The nominal metadata of a Lytro camera ("f01" or "illum", case-insensitive) for a width x height sensor: raw
 // levels, Bayer pattern, micro-lens pitch and rotation, colour matrix and white balance, as real files of that
