@@ -7,7 +7,8 @@
 //      with the most power: JPEG's 8-pixel blocking has no partners at 60 degrees);
 //   2. each block of about 12 x 12 lenses is demodulated at those vectors; the phase of each block says where the
 //      lattice sits in it, so fitting a plane to the phases over the sensor refines the vectors and gives the
-//      position of the lattice, averaged over every block (content and noise average out, bright blocks count most);
+//      position of the lattice, averaged over every block (content and noise average out; every block with a clear
+//      lattice signal counts the same, dark and flat ones not at all);
 //   3. the vectors and position become the hexagonal lattice model, indexed as the white-image fit indexes it.
 
 #include <omp.h>
@@ -429,8 +430,8 @@ GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::opti
   int columns = 0, rows = 0;
   // Blocks tile the sensor; on small images they overlap by half, for enough of them.
   const int step = (grey.cols / block) * (grey.rows / block) >= 100 ? block : block / 2;
-  // Two rounds: the second demodulates at the refined vectors (measured: it moves the lattice by < 0.01 px on full
-  // captures, but small images start coarser).
+  // Two rounds: the second demodulates at the refined vectors (the coarse ones can be a fraction of a spectrum bin
+  // off, which on small images is a noticeable phase drift across a block).
   for (int round = 0; round < 2; ++round) {
     const std::vector<BlockPhases> blocks = DemodulateBlocks(contrast, k, block, step, columns, rows);
     for (int m = 0; m < 3; ++m) planes[m] = FitPhasePlane(blocks, m, k[m], columns, rows, step);
