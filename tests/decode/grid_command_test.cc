@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -68,6 +69,22 @@ TEST(GridCommand, AnImageWithoutALatticeExits2AndWritesNothing) {
   result = RunLfsp({"grid", (dir / "noise.png").string(), "--camera", "f02", "--out", out.string()});
   EXPECT_EQ(result.exit_status, 2);
   EXPECT_NE(result.err.find("--camera 'f02'"), std::string::npos) << result.err;
+}
+
+// `info --camera` reads a plain raw image as decode would: levels, Bayer pattern, codes per phase.
+TEST(GridCommand, InfoDescribesAPlainRawImage) {
+  TempDir dir;
+  cv::Mat mosaic(64, 64, CV_16U);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) mosaic.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(200 + 100 * (x % 2));
+  WriteImage(mosaic, dir / "raw.png", 16);
+  const auto result = RunLfsp({"info", (dir / "raw.png").string(), "--camera", "f01"});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("plain raw image (16-bit png)"), std::string::npos) << result.out;
+  // Codes up to 300 fit under the F01's 4095 white level: a sensor dump, read with the camera's levels.
+  EXPECT_NE(result.out.find("the camera's levels"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("BGGR"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("phase 1      codes 300 .. 300"), std::string::npos) << result.out;
 }
 
 }  // namespace
