@@ -40,6 +40,57 @@ bool FindBoard(const cv::Mat& grey, int corners_x, int corners_y, std::vector<cv
   return true;
 }
 
+// The whole visible part of a board that may overflow the image (CALIB_CB_LARGER from a 3 x 3 pattern), with its
+// size. Rows and columns that come within `edge` pixels of the image border are trimmed.
+bool FindVisibleBoard(const cv::Mat& grey, std::vector<cv::Point2d>& corners, int& corners_x, int& corners_y) {
+  cv::Mat grey8;
+  cv::normalize(grey, grey8, 0, 255, cv::NORM_MINMAX, CV_8U);
+  std::vector<cv::Point2f> found;
+  cv::Mat meta;
+  const int flags =
+      cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY | cv::CALIB_CB_LARGER | cv::CALIB_CB_EXHAUSTIVE;
+  if (!cv::findChessboardCornersSB(grey8, cv::Size(3, 3), found, flags, meta)) return false;
+  // meta is one entry per corner, rows x columns of the detected grid.
+  corners_x = meta.cols;
+  corners_y = meta.rows;
+  if (corners_x < 3 || corners_y < 3 || found.size() != static_cast<std::size_t>(corners_x * corners_y)) return false;
+  corners.assign(found.begin(), found.end());
+  return true;
+}
+
+// Drops outer rows and columns of a full grid while any of their corners lies within `edge` px of the image border.
+void TrimNearBorder(std::vector<cv::Point2d>& corners, int& corners_x, int& corners_y, int width, int height,
+                    double edge) {
+  auto near_border = [&](const cv::Point2d& p) {
+    return p.x < edge || p.y < edge || p.x > width - 1 - edge || p.y > height - 1 - edge;
+  };
+  int x0 = 0, x1 = corners_x - 1, y0 = 0, y1 = corners_y - 1;
+  auto at = [&](int a, int b) { return corners[static_cast<std::size_t>(b * corners_x + a)]; };
+  for (bool changed = true; changed && x1 - x0 >= 2 && y1 - y0 >= 2;) {
+    changed = false;
+    auto column_near = [&](int a) {
+      for (int b = y0; b <= y1; ++b)
+        if (near_border(at(a, b))) return true;
+      return false;
+    };
+    auto row_near = [&](int b) {
+      for (int a = x0; a <= x1; ++a)
+        if (near_border(at(a, b))) return true;
+      return false;
+    };
+    if (column_near(x0)) ++x0, changed = true;
+    if (column_near(x1)) --x1, changed = true;
+    if (row_near(y0)) ++y0, changed = true;
+    if (row_near(y1)) --y1, changed = true;
+  }
+  std::vector<cv::Point2d> kept;
+  for (int b = y0; b <= y1; ++b)
+    for (int a = x0; a <= x1; ++a) kept.push_back(at(a, b));
+  corners = std::move(kept);
+  corners_x = x1 - x0 + 1;
+  corners_y = y1 - y0 + 1;
+}
+
 // Sub-pixel refinement with a window well inside one square.
 void RefineCorners(const cv::Mat& grey, std::vector<cv::Point2d>& corners, double square_px) {
   const int half = std::clamp(static_cast<int>(0.42 * square_px), 2, 8);
@@ -153,7 +204,8 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
                                     const CornerDetectionOptions& options) {
   const LightFieldShape& shape = light_field.shape();
   if (light_field.empty()) throw Error(name + ": the light field is empty");
-  if (options.corners_x < 3 || options.corners_y < 3)
+  const bool partial = options.corners_x == 0 && options.corners_y == 0;
+  if (!partial && (options.corners_x < 3 || options.corners_y < 3))
     throw Error("checkerboard size " + std::to_string(options.corners_x) + "x" + std::to_string(options.corners_y) +
                 ": at least 3x3 inner corners are needed");
   CaptureCorners out;
@@ -195,12 +247,29 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
   int reference = -1;
   for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(kReferenceCandidates); ++c) {
     const ViewIndex view = ViewFromCameraNumber(candidates[c], shape.nu);
-    if (FindBoard(GreyView(light_field, view), options.corners_x, options.corners_y, reference_corners) &&
-        CanonicalCornerOrder(reference_corners, options.corners_x, options.corners_y)) {
+    const cv::Mat grey = GreyView(light_field, view);
+    bool found_board = false;
+    if (partial) {
+      found_board = FindVisibleBoard(grey, reference_corners, out.corners_x, out.corners_y) &&
+                    CanonicalCornerOrder(reference_corners, out.corners_x, out.corners_y);
+      if (found_board) {
+        TrimNearBorder(reference_corners, out.corners_x, out.corners_y, shape.width, shape.height,
+                       SquarePixels(reference_corners, out.corners_x) + 2.0);
+        found_board = out.corners_x >= 3 && out.corners_y >= 3;
+      }
+    } else {
+      found_board = FindBoard(grey, options.corners_x, options.corners_y, reference_corners) &&
+                    CanonicalCornerOrder(reference_corners, options.corners_x, options.corners_y);
+    }
+    if (found_board) {
       reference = candidates[c];
       break;
     }
   }
+  if (reference < 0 && partial)
+    throw Error(name +
+                ": no checkerboard (of any size, at least 3x3 inner corners away from the edges) found in the "
+                "central views");
   if (reference < 0) {
     std::ostringstream message;
     message << name << ": no checkerboard of " << options.corners_x << "x" << options.corners_y
@@ -209,7 +278,7 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
     throw Error(message.str());
   }
   out.reference = ViewFromCameraNumber(reference, shape.nu);
-  const double square_px = SquarePixels(reference_corners, options.corners_x);
+  const double square_px = SquarePixels(reference_corners, out.corners_x);
   RefineCorners(GreyView(light_field, out.reference), reference_corners, square_px);
 
   // Track the corners ring by ring away from the reference view.

@@ -24,8 +24,12 @@
 namespace lfsp::calibrate {
 
 struct CornerDetectionOptions {
-  int corners_x = 19;              // inner corners per board row
-  int corners_y = 19;              // inner corners per board column
+  int corners_x = 19;  // inner corners per board row (0 with corners_y 0: a partial board, below)
+  int corners_y = 19;  // inner corners per board column
+  // corners_x = corners_y = 0: the board may overflow the views (close-up captures). The reference view's whole
+  // visible grid is taken (OpenCV's CALIB_CB_LARGER), less the rows and columns within one square of the view's
+  // edge (parallax moves them out of other views); CaptureCorners records the size used. Corner indices then count
+  // from the first visible corner, so each capture has its own board origin (its pose absorbs it).
   double min_view_weight = 0.2;    // views whose mean weight is below this are skipped as dark (LFToolbox: 0.2)
   int view_border = 0;             // also skip views this close to the edge of the view grid (LFToolbox default 1)
   double max_grid_residual = 0.5;  // px: a view whose corners do not follow a homography of the reference view's
