@@ -23,10 +23,20 @@ struct WhiteSource {
   bool estimated = false;
 };
 
-// The capture's white image from the database: by serial, zoom, focus. lfsp::Error when none matches.
-WhiteSource WhiteFromDatabase(const RawInput& input, const std::filesystem::path& white_dir) {
-  const WhiteImageDatabase database = LoadOrBuildWhiteImageDatabase(white_dir);
-  const WhiteImageChoice choice = SelectWhiteImage(database, input.metadata);
+// The capture's white image from the database: by serial, zoom, focus. Without a match, nothing (and `why` says
+// why); a matching white image that cannot be read is an lfsp::Error, not a reason to fall back.
+std::optional<WhiteSource> WhiteFromDatabase(const RawInput& input, const std::filesystem::path& white_dir,
+                                             std::string& why) {
+  std::optional<WhiteImageChoice> found;
+  std::optional<WhiteImageDatabase> database;
+  try {
+    database = LoadOrBuildWhiteImageDatabase(white_dir);
+    found = SelectWhiteImage(*database, input.metadata);
+  } catch (const Error& e) {
+    why = std::string("no matching white image (") + e.what() + ")";
+    return std::nullopt;
+  }
+  const WhiteImageChoice& choice = *found;
   WhiteSource white;
   white.raw = ReadWhiteImageRaw(*choice.entry);
   white.metadata = ReadWhiteImageMetadata(*choice.entry);
@@ -84,12 +94,9 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   if (IsPlainRawImagePath(capture_path)) {
     estimate_why = "a plain raw image has no serial, zoom or focus to match a white image by";
   } else if (!options.no_white_image) {
-    try {
-      white = WhiteFromDatabase(input, white_dir);
-    } catch (const Error& e) {
-      estimate_why = std::string("no matching white image (") + e.what() + ")";
+    white = WhiteFromDatabase(input, white_dir, estimate_why);
+    if (!white)
       spdlog::warn("{}: {}; estimating the white image from the capture itself", capture_path.string(), estimate_why);
-    }
   }
   const double white_seconds = SecondsSince(step);
 
