@@ -35,13 +35,17 @@ struct CalibrateCommandOptions {
   bool allow_mixed_settings = false;
 };
 
-// "19x19" -> 19, 19.
+// "19x19" -> 19, 19; "auto" -> 0, 0 (partial-board mode, see CornerDetectionOptions).
 void ParseCorners(const std::string& text, int& x, int& y) {
+  if (text == "auto") {
+    x = y = 0;
+    return;
+  }
   char separator = 0;
   char extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &x, &separator, &y, &extra) != 3 ||
       (separator != 'x' && separator != 'X') || x < 3 || y < 3 || x > 200 || y > 200) {
-    throw Error("--corners '" + text + "': expected inner corners as WxH, e.g. 19x19 (each 3..200)");
+    throw Error("--corners '" + text + "': expected inner corners as WxH, e.g. 19x19 (each 3..200), or auto");
   }
 }
 
@@ -124,7 +128,11 @@ void AddCalibrateCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--out", options->out, "Output calibration JSON")->required();
-  command->add_option("--corners", options->corners, "Inner corners of the board, WxH")->capture_default_str();
+  command
+      ->add_option("--corners", options->corners,
+                   "Inner corners of the board, WxH; or auto: whatever part of the board each capture shows, for "
+                   "boards larger than the views (corners within one square of a view's edge are left out)")
+      ->capture_default_str();
   command->add_option("--square-size", options->square_size_mm, "Checker square side in millimetres")
       ->capture_default_str();
   command

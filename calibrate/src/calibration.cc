@@ -47,7 +47,10 @@ void CheckConsistency(const std::vector<CaptureCorners>& captures, const Calibra
     const LightFieldShape& a = c.shape;
     const LightFieldShape& b = first.shape;
     if (a.nu != b.nu || a.nv != b.nv || a.width != b.width || a.height != b.height) other_size.push_back(c.name);
-    if (c.corners_x != first.corners_x || c.corners_y != first.corners_y) other_grid.push_back(c.name);
+    // Partial boards (the visible part of a board larger than the views) differ in size by nature: each capture's
+    // corners are indexed from its own first visible corner, and its pose absorbs the offset.
+    const bool partial = c.partial_board && first.partial_board;
+    if (!partial && (c.corners_x != first.corners_x || c.corners_y != first.corners_y)) other_grid.push_back(c.name);
   }
   if (!other_size.empty()) {
     throw Error("calibration: captures of different light-field sizes: " + Join(other_size) + " differ from " +

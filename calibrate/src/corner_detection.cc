@@ -213,6 +213,7 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
   out.shape = shape;
   out.corners_x = options.corners_x;
   out.corners_y = options.corners_y;
+  out.partial_board = partial;
   ReadCameraFacts(light_field.metadata, out);
 
   const int views = static_cast<int>(shape.Views());

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -81,6 +82,20 @@ TEST_F(CalibrateCli, CalibratesAndRectifies) {
   const auto again = RunLfsp({"rectify", out, "--calibration", cal, "--out", (*dir_ / "twice.h5").string()});
   EXPECT_EQ(again.exit_status, 2);
   EXPECT_NE(again.err.find("already rectified"), std::string::npos) << again.err;
+}
+
+// --corners auto: the visible part of the board, whatever its size (for boards that overflow the views, as on the
+// real F01 checkerboard). On these fully visible boards it calibrates as well as the exact size does.
+TEST_F(CalibrateCli, AutoCornersCalibrateLikeTheExactGridSize) {
+  const std::string cal = (*dir_ / "cal_auto.json").string();
+  const auto r = RunLfsp({"calibrate", Path(0), Path(1), Path(2), "--corners", "auto", "--out", cal});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  std::ifstream file(cal);
+  const nlohmann::json j = nlohmann::json::parse(file);
+  std::printf("  --corners auto: rms %.4f mm, board %s in the first capture\n", j["rms_mm"].get<double>(),
+              j["checkerboard"]["corners"].dump().c_str());
+  EXPECT_LT(j["rms_mm"].get<double>(), 0.1);
+  EXPECT_EQ(j["captures"].size(), 3u);
 }
 
 TEST_F(CalibrateCli, ViewsFolderWithoutWeightsSkipsTheSameDarkViews) {

@@ -46,6 +46,7 @@ struct CaptureCorners {
   LightFieldShape shape;
   int corners_x = 0;
   int corners_y = 0;
+  bool partial_board = false;      // found in partial-board mode: the grid size is this capture's own
   ViewIndex reference;             // where the board was searched for
   std::vector<ViewCorners> views;  // every view with a complete detection, same corner order
   std::vector<ViewIndex> dark_views;
