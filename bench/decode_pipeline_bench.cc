@@ -127,6 +127,19 @@ double InnerPsnr(const LightField& decoded) {
   return 10.0 * std::log10(count / squared);
 }
 
+// RMS distance of a grid's lens centres from the simulator's true lattice, over every usable lens.
+double CentreRmsVsTruth(const decode::LensletGrid& grid, const simulate::LensletLattice& truth) {
+  double sum = 0.0;
+  for (int j = 0; j < truth.rows; ++j)
+    for (int i = 0; i < truth.columns; ++i) {
+      double x = 0.0, y = 0.0;
+      grid.Centre(i, j, x, y);
+      const PixelPosition t = truth.Centre(i, j);
+      sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
+    }
+  return std::sqrt(sum / (truth.rows * truth.columns));
+}
+
 }  // namespace
 
 LFSP_BENCH_CASE {
@@ -140,17 +153,9 @@ LFSP_BENCH_CASE {
   c.run = [] {
     const decode::LensletGrid grid = EstimateGrid();
     const simulate::LensletLattice& truth = Shot().truth;
-    double sum = 0.0;
-    for (int j = 0; j < truth.rows; ++j)
-      for (int i = 0; i < truth.columns; ++i) {
-        double x = 0.0, y = 0.0;
-        grid.Centre(i, j, x, y);
-        const PixelPosition t = truth.Centre(i, j);
-        sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
-      }
     char text[160];
     std::snprintf(text, sizeof text, "centres rms %.4f px, rot err %.1e rad, spacing err %.1e",
-                  std::sqrt(sum / (truth.rows * truth.columns)), std::abs(grid.rotation - truth.rotation),
+                  CentreRmsVsTruth(grid, truth), std::abs(grid.rotation - truth.rotation),
                   std::abs(grid.spacing_x / truth.spacing - 1.0));
     return std::string(text);
   };
@@ -215,23 +220,10 @@ LFSP_BENCH_CASE {
   c.prepare = PrepareCapture;
   c.run = [] {
     IllumShot& shot = Shot();
-    const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
-    const decode::LensletGrid grid =
-        decode::FindLensletGrid(
-            grey, decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width, shot.capture.height),
-            decode::LensletImageKind::kCapture)
-            .grid;
-    double sum = 0.0;
-    for (int j = 0; j < shot.truth.rows; ++j)
-      for (int i = 0; i < shot.truth.columns; ++i) {
-        double x = 0.0, y = 0.0;
-        grid.Centre(i, j, x, y);
-        const PixelPosition t = shot.truth.Centre(i, j);
-        sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
-      }
+    const decode::LensletGrid grid = decode::FindLensletGridInCapture(shot.capture, shot.capture_metadata).grid;
     char text[160];
     std::snprintf(text, sizeof text, "%d x %d lenses, centres rms vs truth %.4f px", grid.columns, grid.rows,
-                  std::sqrt(sum / (shot.truth.rows * shot.truth.columns)));
+                  CentreRmsVsTruth(grid, shot.truth));
     return std::string(text);
   };
   return c;
@@ -250,12 +242,7 @@ LFSP_BENCH_CASE {
     IllumShot& shot = Shot();
     decode::DecodeOptions options;
     options.colour = decode::ColourMode::kLinear;
-    const cv::Mat grey = decode::WhiteImageToGrey(shot.capture, shot.capture_metadata.RequireRawFormat(), "capture");
-    const decode::LensletGrid grid =
-        decode::FindLensletGrid(
-            grey, decode::GuessFromMetadata(shot.capture_metadata, shot.capture.width, shot.capture.height),
-            decode::LensletImageKind::kCapture)
-            .grid;
+    const decode::LensletGrid grid = decode::FindLensletGridInCapture(shot.capture, shot.capture_metadata).grid;
     const decode::RawImage white = decode::EstimateWhiteImageFromCapture(shot.capture, shot.capture_metadata, grid);
     const decode::PreparedWhite prepared = decode::PrepareWhite(white, shot.capture_metadata, options.colour);
     const LightField decoded = decode::DecodeLenslet(shot.capture, shot.capture_metadata, prepared, grid, options);

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <optional>
 
 #include "lfsp/core/error.h"
 #include "lfsp/decode/lenslet_grid.h"
@@ -57,18 +58,6 @@ WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, con
   return white;
 }
 
-// The lattice of the capture itself, starting from the metadata's description of the micro-lens array.
-GridEstimate GridFromCapture(const RawInput& input) {
-  const cv::Mat grey = WhiteImageToGrey(input.raw, input.metadata.RequireRawFormat(), input.path.string());
-  std::optional<GridGuess> guess;
-  if (input.metadata.mla) guess = GuessFromMetadata(input.metadata, input.raw.width, input.raw.height);
-  try {
-    return FindLensletGrid(grey, guess, LensletImageKind::kCapture);
-  } catch (const Error& e) {
-    throw Error(input.path.string() + ": " + e.what());
-  }
-}
-
 }  // namespace
 
 CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path, const CaptureDecodeOptions& options) {
@@ -104,16 +93,21 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   // found in the capture itself.
   step = std::chrono::steady_clock::now();
   GridEstimate estimate;
+  std::optional<PreparedWhite> prepared;
   if (white) {
-    const cv::Mat grey = WhiteImageToGrey(white->raw, white->metadata.RequireRawFormat(), white->metadata.source);
+    // The prepared white image's grey version is what the grid is fitted on.
+    prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
     const LytroMetadata& mla_source = white->metadata.mla ? white->metadata : metadata;
-    estimate = EstimateLensletGrid(grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
+    estimate = EstimateLensletGrid(prepared->grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
   } else {
-    estimate = GridFromCapture(input);
+    try {
+      estimate = FindLensletGridInCapture(input.raw, metadata);
+    } catch (const Error& e) {
+      throw Error(input.path.string() + ": " + e.what());
+    }
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
+    prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   }
-  const PreparedWhite prepared =
-      PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   const double grid_seconds = SecondsSince(step);
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px ({})",
@@ -122,7 +116,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
 
   CaptureDecodeResult result;
   DecodeReport report;
-  result.light_field = DecodeLenslet(input.raw, metadata, prepared, estimate.grid, options.decode, &report);
+  result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, options.decode, &report);
   result.light_field.metadata["decode"]["white_choice"] = white->summary["why"];
   result.light_field.metadata["decode"]["white_estimated"] = white->estimated;
 

@@ -92,4 +92,11 @@ GridEstimate FindLensletGrid(const cv::Mat& grey, const std::optional<GridGuess>
   return EstimateLensletGrid(grey, GuessFromGrid(periodic.grid, guess));
 }
 
+GridEstimate FindLensletGridInCapture(const RawImage& capture, const LytroMetadata& metadata) {
+  const cv::Mat grey = WhiteImageToGrey(capture, metadata.RequireRawFormat(), metadata.source);
+  std::optional<GridGuess> guess;
+  if (metadata.mla) guess = GuessFromMetadata(metadata, capture.width, capture.height);
+  return FindLensletGrid(grey, guess, LensletImageKind::kCapture);
+}
+
 }  // namespace lfsp::decode

@@ -127,4 +127,8 @@ LensletImageKind LensletImageKindFromString(const std::string& name);  // auto |
 // of 1.6 of the median brightness): centroids are the more precise where the scene does not pull them.
 GridEstimate FindLensletGrid(const cv::Mat& grey, const std::optional<GridGuess>& guess, LensletImageKind kind);
 
+// The lattice of a raw capture by periodicity (kCapture), levelled by its raw format and started from its micro-lens
+// description when the metadata has one.
+GridEstimate FindLensletGridInCapture(const RawImage& capture, const LytroMetadata& metadata);
+
 }  // namespace lfsp::decode
