@@ -66,6 +66,7 @@ void RunDepth(const DepthCommandOptions& options) {
   summary["noise_sigma"] = result.noise_sigma;
   summary["presmooth_sigma"] = result.presmooth_sigma;
   summary["excluded_ring"] = result.excluded_ring;
+  summary["detail_weight"] = result.detail_weight;
   summary["timings_seconds"] = result.timings;
   summary["timings_seconds"]["load"] = load_seconds;
   if (bundle.disparity && bundle.disparity->width() == result.disparity.width() &&
@@ -123,6 +124,14 @@ void AddDepthCommand(CLI::App& parent) {
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--detail-weight", method.cost.detail_weight,
+                   "Weight of the detail term of the cost (the locally normalised high-pass grey image); -1 = "
+                   "automatic: 1 on views that are not presmoothed, else the band's signal against its noise, "
+                   "m^2 / (m^2 + (16 n)^2), m the median local RMS of the centre view's detail, n the noise floor's "
+                   "share of it (0.15-0.2 on full-size lenslet decodes with weak texture)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1.0, 100.0));
   command
       ->add_option("--presmooth", method.presmooth_sigma,
                    "Gaussian smoothing of every view before matching, pixels; -1 = automatic from the estimated noise "

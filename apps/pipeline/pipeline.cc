@@ -194,6 +194,10 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     return estimate;
   });
   summary["disparity_range"] = {{"min", depth_result.range.min}, {"max", depth_result.range.max}};
+  summary["depth_choices"] = {{"noise_sigma", depth_result.noise_sigma},
+                              {"presmooth_sigma", depth_result.presmooth_sigma},
+                              {"excluded_ring", depth_result.excluded_ring},
+                              {"detail_weight", depth_result.detail_weight}};
 
   const segment::LfspResult segmentation = stages.Run("segment", [&] {
     segment::LfspResult lfsp = segment::SegmentLightField(light_field, depth_result.disparity, options.segment);

@@ -7,7 +7,14 @@
 
 namespace lfsp {
 
-double EstimateNoiseSigma(const cv::Mat& image) {
+namespace {
+
+// For Gaussian noise, median |N(0, 36 sigma^2)| = 0.6745 * 6 sigma (the mask below has sum of squares 36).
+constexpr double kMedianResponsePerSigma = 0.6745 * 6.0;
+
+// |response| of the grey image to the mask that cancels any plane (the difference of two Laplacians), without the
+// one-pixel border; empty if the image is smaller than 3x3.
+cv::Mat PlaneFreeResponse(const cv::Mat& image) {
   cv::Mat grey;
   if (image.channels() == 3) {
     cv::cvtColor(image, grey, cv::COLOR_RGB2GRAY);
@@ -15,19 +22,47 @@ double EstimateNoiseSigma(const cv::Mat& image) {
     grey = image;
   }
   grey.convertTo(grey, CV_32F);
-  if (grey.rows < 3 || grey.cols < 3) return 0.0;
-  // The mask is the difference of two Laplacians; it is zero on any linear ramp and has sum of squares 36.
+  if (grey.rows < 3 || grey.cols < 3) return {};
   const cv::Mat mask = (cv::Mat_<float>(3, 3) << 1, -2, 1, -2, 4, -2, 1, -2, 1);
   cv::Mat response;
   cv::filter2D(grey, response, CV_32F, mask, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
-  // The median of |response| rather than Immerkaer's mean: texture and edges give a minority of large responses,
-  // which the mean counts as noise. For Gaussian noise, median |N(0, 36 sigma^2)| = 0.6745 * 6 sigma.
-  cv::Mat inner = cv::abs(response(cv::Rect(1, 1, grey.cols - 2, grey.rows - 2)));
-  inner = inner.clone();
-  std::vector<float> values(inner.begin<float>(), inner.end<float>());
+  return cv::abs(response(cv::Rect(1, 1, grey.cols - 2, grey.rows - 2)));
+}
+
+float Median(std::vector<float>& values) {
   auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
-  return static_cast<double>(*middle) / (0.6745 * 6.0);
+  return *middle;
+}
+
+}  // namespace
+
+double EstimateNoiseSigma(const cv::Mat& image) {
+  const cv::Mat response = PlaneFreeResponse(image);
+  if (response.empty()) return 0.0;
+  // The median of |response| rather than Immerkaer's mean: texture and edges give a minority of large responses,
+  // which the mean counts as noise.
+  const cv::Mat inner = response.clone();
+  std::vector<float> values(inner.begin<float>(), inner.end<float>());
+  return static_cast<double>(Median(values)) / kMedianResponsePerSigma;
+}
+
+double EstimateNoiseFloor(const cv::Mat& image) {
+  constexpr int kBlock = 16;
+  constexpr double kTenthPercentileOfBlockMedians = 0.906;  // for white noise, relative to the median
+  const cv::Mat response = PlaneFreeResponse(image);
+  if (response.rows < kBlock || response.cols < kBlock) return EstimateNoiseSigma(image);
+  std::vector<float> block_medians;
+  std::vector<float> values(static_cast<std::size_t>(kBlock * kBlock));
+  for (int y = 0; y + kBlock <= response.rows; y += kBlock)
+    for (int x = 0; x + kBlock <= response.cols; x += kBlock) {
+      const cv::Mat block = response(cv::Rect(x, y, kBlock, kBlock)).clone();
+      values.assign(block.begin<float>(), block.end<float>());
+      block_medians.push_back(Median(values));
+    }
+  auto tenth = block_medians.begin() + static_cast<std::ptrdiff_t>(block_medians.size() / 10);
+  std::nth_element(block_medians.begin(), tenth, block_medians.end());
+  return static_cast<double>(*tenth) / (kMedianResponsePerSigma * kTenthPercentileOfBlockMedians);
 }
 
 double EstimateChannelNoiseSigma(const cv::Mat& rgb) {

@@ -29,10 +29,12 @@ struct TermWeights {
   float colour_deadzone;
   float colour_truncation;
   float detail_truncation;
+  float detail_weight;
 };
 
 // Bilinear samples of one view's feature row at (x + sx, y + sy), compared with the centre view's feature row:
-// cost[x] = colour_weight * min(max(|dR| + |dG| + |dB| - deadzone, 0), truncation) + min(|d detail|, truncation),
+// cost[x] = colour_weight * min(max(|dR| + |dG| + |dB| - deadzone, 0), truncation)
+//           + detail_weight * min(|d detail|, truncation),
 // added to total[x], and to half_a[x] where in_half_a[x] is 1 (if half_a is not null). Samples beyond the border are
 // clamped. `differences` is scratch for (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and
 // chosen at run time: the interpolation runs over the interleaved samples as one contiguous, vectorised loop.
@@ -85,7 +87,7 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   for (int x = 0; x < width; ++x) {
     const float colour = std::min(std::max(d[kC * x] + d[kC * x + 1] + d[kC * x + 2] - terms.colour_deadzone, 0.0f),
                                   terms.colour_truncation);
-    cost[x] = terms.colour_weight * colour + std::min(d[kC * x + 3], terms.detail_truncation);
+    cost[x] = terms.colour_weight * colour + terms.detail_weight * std::min(d[kC * x + 3], terms.detail_truncation);
   }
   for (int x = 0; x < width; ++x) total[x] += cost[x];
   if (half_a != nullptr) {
@@ -207,7 +209,8 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
                 " of the centre leaves none");
   const TermWeights terms{options.colour_weight, options.colour_deadzone, options.colour_truncation,
-                          options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f};
+                          options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f,
+                          options.detail_weight < 0.0f ? 1.0f : options.detail_weight};
   const SplitTable splits = MakeSplitTable(plans);
   const float all_views = static_cast<float>(plans.size());
   const int tile_rows = std::max(1, options.tile_rows);

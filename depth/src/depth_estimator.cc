@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/depth/detail_weight.h"
 #include "lfsp/depth/presmooth.h"
 
 namespace lfsp::depth {
@@ -74,6 +75,10 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   CostOptions cost_options = options.cost;
   if (cost_options.excluded_ring < 0) cost_options.excluded_ring = ExcludedRingFor(light_field);
   result.excluded_ring = cost_options.excluded_ring;
+  if (cost_options.detail_weight < 0.0f)
+    cost_options.detail_weight =
+        DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma, cost_options);
+  result.detail_weight = cost_options.detail_weight;
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   timer.Lap("cost_volume");
   if (options.aggregation_radius > 0) {

@@ -50,6 +50,7 @@ nlohmann::json ToJson(const DepthOptions& options) {
   json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
   json["presmooth_sigma"] = options.presmooth_sigma;
   json["excluded_ring"] = options.cost.excluded_ring;
+  json["detail_weight"] = options.cost.detail_weight;
   return json;
 }
 

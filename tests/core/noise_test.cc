@@ -39,5 +39,28 @@ TEST(NoiseEstimate, ReadsTheAddedNoiseOnATexturedImage) {
   }
 }
 
+// Pixel-scale texture everywhere (the bundled mini-Illum decode's case): the plain median reads the texture as noise,
+// the floor of the flattest blocks does not, and on a texture with flat parts both read white noise right.
+TEST(NoiseFloor, ReadsNoiseUnderATextureThatCoversTheView) {
+  cv::Mat fine(128, 128, CV_32FC1);
+  cv::RNG random(3);
+  random.fill(fine, cv::RNG::UNIFORM, 0.1, 0.9);
+  cv::GaussianBlur(fine, fine, cv::Size(0, 0), 0.6);
+  // Flat in the top quarter of the rows, fine texture below.
+  fine(cv::Rect(0, 0, 128, 32)).setTo(0.5);
+  const double sigma = 0.01;
+  const cv::Mat noisy = WithNoise(fine, sigma, 11);
+  EXPECT_GT(EstimateNoiseSigma(noisy), 2.0 * sigma) << "the median reads the texture";
+  EXPECT_NEAR(EstimateNoiseFloor(noisy), sigma, 0.15 * sigma);
+
+  cv::Mat grey;
+  cv::cvtColor(Texture(256, 5), grey, cv::COLOR_RGB2GRAY);
+  for (double level : {0.005, 0.03}) {
+    const cv::Mat textured = WithNoise(grey, level, 13);
+    EXPECT_NEAR(EstimateNoiseFloor(textured), level, 0.15 * level) << "sigma " << level;
+    EXPECT_NEAR(EstimateNoiseFloor(textured), EstimateNoiseSigma(textured), 0.15 * level);
+  }
+}
+
 }  // namespace
 }  // namespace lfsp

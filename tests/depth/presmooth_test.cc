@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <opencv2/imgproc.hpp>
 
 #include "lfsp/depth/depth_estimator.h"
+#include "lfsp/depth/detail_weight.h"
 #include "lfsp/simulate/image_noise.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
@@ -55,6 +57,33 @@ TEST(Presmooth, AutomaticSmoothingRescuesDepthOnANoisyLightField) {
   defaults.range = DisparityRange{-2.0f, 2.0f};
   const DepthResult clean = EstimateDepth(scene.light_field, defaults);
   EXPECT_EQ(clean.presmooth_sigma, 0.0) << "noise estimate on the clean views: " << clean.noise_sigma;
+}
+
+// The automatic detail weight: whole on unsmoothed views; on smoothed ones, low where the detail band holds little
+// more than noise (a weak texture) and high where a strong texture survives the smoothing.
+TEST(DetailWeight, FollowsTheDetailBandsSignalAgainstItsNoise) {
+  const CostOptions options;
+  cv::Mat weak(192, 192, CV_32FC3), strong(192, 192, CV_32FC3);
+  cv::RNG random(5);
+  random.fill(weak, cv::RNG::UNIFORM, 0.0, 1.0);
+  cv::GaussianBlur(weak, weak, cv::Size(0, 0), 4.0);
+  weak = 0.5 + 0.3 * (weak - 0.5);  // faint blobs, as the two-horses background
+  random.fill(strong, cv::RNG::UNIFORM, 0.0, 1.0);
+  cv::GaussianBlur(strong, strong, cv::Size(0, 0), 1.0);
+  cv::Mat noise(weak.size(), weak.type());
+  random.fill(noise, cv::RNG::NORMAL, 0.0, 0.008);
+  const cv::Mat weak_noisy = weak + noise, strong_noisy = strong + noise;
+  auto smoothed = [](const cv::Mat& view) {
+    cv::Mat out;
+    cv::GaussianBlur(view, out, cv::Size(0, 0), 2.5);
+    return out;
+  };
+  EXPECT_EQ(DetailWeightFor(weak_noisy, weak_noisy, 0.0, options), 1.0f) << "unsmoothed views keep the whole term";
+  const float weak_weight = DetailWeightFor(weak_noisy, smoothed(weak_noisy), 2.5, options);
+  const float strong_weight = DetailWeightFor(strong_noisy, smoothed(strong_noisy), 2.5, options);
+  std::printf("detail weight: faint texture %.3f, strong texture %.3f\n", weak_weight, strong_weight);
+  EXPECT_LT(weak_weight, 0.1f);
+  EXPECT_GT(strong_weight, 0.5f);
 }
 
 }  // namespace

@@ -55,7 +55,10 @@ struct CostOptions {
   float detail_truncation = 0.5f;           // cap of the per-view |normalised grey detail| difference
   float detail_normalise_sigma = 4.0f;      // > 0: divide detail by its local RMS (Gaussian window), 0 = off
   float detail_normalise_epsilon = 0.005f;  // added to the RMS, so flat noise is not blown up
-  float colour_weight = 3.0f;               // 0 = no colour term
+  // Weight of the detail term; < 0 = automatic (EstimateDepth: DetailWeightFor, from the detail band's signal and
+  // noise; BuildCostVolume alone reads < 0 as 1).
+  float detail_weight = -1.0f;
+  float colour_weight = 3.0f;       // 0 = no colour term
   float colour_deadzone = 0.0f;     // colour differences below this are free (shading, view-dependent brightness)
   float colour_truncation = 0.12f;  // cap of the per-view sum of |RGB| differences, so occluded views cannot dominate
   // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is

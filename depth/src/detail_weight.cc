@@ -1,0 +1,60 @@
+#include "lfsp/depth/detail_weight.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "lfsp/core/noise.h"
+
+namespace lfsp::depth {
+namespace {
+
+cv::Mat Grey(const cv::Mat& rgb) {
+  cv::Mat grey;
+  cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
+  return grey;
+}
+
+// The high-pass of MakeFeatureImages (before its contrast normalisation).
+cv::Mat HighPass(const cv::Mat& grey, double sigma) {
+  cv::Mat low;
+  cv::GaussianBlur(grey, low, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
+  return grey - low;
+}
+
+// Norm of the kernel that takes white noise into the detail band: Gaussian presmoothing, then the high-pass.
+double BandKernelNorm(double presmooth_sigma, double detail_sigma) {
+  const int half = static_cast<int>(std::ceil(4.0 * (presmooth_sigma + detail_sigma))) + 2;
+  cv::Mat impulse = cv::Mat::zeros(2 * half + 1, 2 * half + 1, CV_32F);
+  impulse.at<float>(half, half) = 1.0f;
+  if (presmooth_sigma > 0.0)
+    cv::GaussianBlur(impulse, impulse, cv::Size(), presmooth_sigma, presmooth_sigma, cv::BORDER_CONSTANT);
+  return cv::norm(HighPass(impulse, detail_sigma));
+}
+
+double MedianLocalRms(const cv::Mat& detail, double window_sigma) {
+  cv::Mat energy;
+  cv::multiply(detail, detail, energy);
+  cv::GaussianBlur(energy, energy, cv::Size(), window_sigma, window_sigma, cv::BORDER_REFLECT);
+  std::vector<float> values(energy.begin<float>(), energy.end<float>());
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return std::sqrt(std::max(0.0f, *middle));
+}
+
+}  // namespace
+
+float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
+                      const CostOptions& options) {
+  // Unsmoothed views are clean ones (PresmoothSigmaForNoise, PresmoothFloorFor): their detail term stays whole.
+  if (!(options.detail_sigma > 0.0f) || !(presmooth_sigma > 0.0)) return 1.0f;
+  const double noise_in_band = EstimateNoiseFloor(raw_centre) * BandKernelNorm(presmooth_sigma, options.detail_sigma);
+  const double window = options.detail_normalise_sigma > 0.0f ? options.detail_normalise_sigma : 4.0;
+  const double signal = MedianLocalRms(HighPass(Grey(smoothed_centre), options.detail_sigma), window);
+  const double margin = kDetailNoiseMargin * noise_in_band;
+  if (!(signal * signal + margin * margin > 0.0)) return 1.0f;
+  return static_cast<float>(signal * signal / (signal * signal + margin * margin));
+}
+
+}  // namespace lfsp::depth
