@@ -52,6 +52,57 @@ LFSP_BENCH_CASE {
   return c;
 }
 
+// The full-size chain (issue 12): `lfsp pipeline` on a simulated full-size capture of two-horses, and beside it the
+// same chain on that capture's ideal light field. The captures are simulated once, outside the measured process.
+fs::path FullSizeCapture(const std::string& camera) {
+  const fs::path folder = fs::temp_directory_path() / ("lfsp_bench_two_horses_" + camera);
+  const fs::path capture = folder / (camera == "illum" ? "capture.LFR" : "capture.lfp");
+  if (!fs::exists(capture) || !fs::exists(folder / "ground_truth" / "decoded.h5"))
+    RunLfsp("simulate --camera " + camera + " --scene two-horses --out " + folder.string());
+  return capture;
+}
+
+std::string PipelineFigures(const fs::path& out) {
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  const nlohmann::json& metrics = summary["metrics"];
+  std::string stages;
+  for (const auto& [stage, seconds] : summary["timings"].items())
+    stages += (stages.empty() ? "" : " ") + stage + " " + Fixed(seconds.get<double>(), 1);
+  const std::string views = std::to_string(summary["views"]["n"].get<int>());
+  return views + "x" + views + " views; BadPix0.07 " + Fixed(metrics["depth"]["all"]["badpix_0.07"].get<double>(), 1) +
+         "%, MSEx100 " + Fixed(metrics["depth"]["all"]["mse_x100"].get<double>(), 1) + "; SS " +
+         Fixed(metrics["segmentation"]["self_similarity"].get<double>(), 2) + " / ref " +
+         Fixed(metrics["segmentation"]["self_similarity_reference"].get<double>(), 2) + " px; written " +
+         Fixed(summary["output_bytes"]["total"].get<double>() / 1e6, 0) + " MB; stages s: " + stages;
+}
+
+BenchCase FullSizePipeline(const std::string& camera, bool ideal) {
+  BenchCase c;
+  c.stage = "apps";
+  c.name = "pipeline-" + camera + (ideal ? "-ideal" : "-capture");
+  const bool illum = camera == "illum";
+  c.input = std::string(illum ? "Illum 7728x5368" : "F01 3280x3280") + " two-horses, simulated" +
+            (ideal ? ": its ideal light field (ground_truth/decoded.h5)" : " capture");
+  c.target = ideal ? "" : (illum ? "<= 15 s, <= 3 GB" : "<= 8 s");
+  c.baseline = ideal ? "" : "pipeline-" + camera + "-ideal";
+  c.repetitions = 3;
+  c.setup = [camera] { FullSizeCapture(camera); };
+  c.run = [camera, ideal] {
+    const fs::path capture = FullSizeCapture(camera);
+    const fs::path input = ideal ? capture.parent_path() / "ground_truth" / "decoded.h5" : capture;
+    const fs::path out = fs::temp_directory_path() / ("lfsp_bench_pipeline_" + camera + (ideal ? "_ideal" : ""));
+    fs::remove_all(out);
+    RunLfsp("pipeline " + input.string() + " --out " + out.string());
+    return PipelineFigures(out);
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE { return FullSizePipeline("illum", true); }
+LFSP_BENCH_CASE { return FullSizePipeline("illum", false); }
+LFSP_BENCH_CASE { return FullSizePipeline("f01", true); }
+LFSP_BENCH_CASE { return FullSizePipeline("f01", false); }
+
 LFSP_BENCH_CASE {
   BenchCase c;
   c.stage = "apps";

@@ -147,7 +147,12 @@ int main(int argc, char** argv) {
       result.skipped = true;
       result.message = "skipped: ../shared/data not found";
     } else {
-      result = RunCase(bench_case, repetitions_override > 0 ? repetitions_override : bench_case.repetitions);
+      try {
+        if (bench_case.setup) bench_case.setup();
+        result = RunCase(bench_case, repetitions_override > 0 ? repetitions_override : bench_case.repetitions);
+      } catch (const std::exception& error) {
+        result.message = std::string("setup failed: ") + error.what();
+      }
     }
     std::string ratio = "";
     if (result.ok) {
