@@ -29,6 +29,7 @@
 #include "lfsp/segment/metrics.h"
 #include "pipeline_report.h"
 #include "recolor_spec.h"
+#include "truth_comparison.h"
 
 namespace lfsp::pipeline {
 namespace fs = std::filesystem;
@@ -78,11 +79,12 @@ void PrepareOutputFolder(const fs::path& out) {
 }
 
 // Ground truth of a simulated capture, written by `lfsp simulate` beside it (ground_truth/decoded.h5), if its
-// shape matches the decoded light field.
-void AttachSimulatorGroundTruth(const fs::path& capture, Bundle& decoded) {
+// shape matches the decoded light field: its disparity and labels go into the bundle, and the decode is compared
+// with its ideal light field while that is loaded.
+std::optional<TruthComparison> AttachSimulatorGroundTruth(const fs::path& capture, Bundle& decoded) {
   const fs::path truth_path = capture.parent_path() / "ground_truth" / "decoded.h5";
   std::error_code ec;
-  if (!fs::exists(truth_path, ec)) return;
+  if (!fs::exists(truth_path, ec)) return std::nullopt;
   Bundle truth = ReadBundle(truth_path);
   const LightFieldShape& shape = decoded.light_field.shape();
   const LightFieldShape& truth_shape = truth.light_field.shape();
@@ -90,11 +92,18 @@ void AttachSimulatorGroundTruth(const fs::path& capture, Bundle& decoded) {
       truth_shape.height != shape.height) {
     spdlog::warn("{}: ground truth is {} but the decoded light field is {}; metrics skipped", truth_path.string(),
                  ToString(truth_shape), ToString(shape));
-    return;
+    return std::nullopt;
   }
   decoded.disparity = std::move(truth.disparity);
   decoded.labels = std::move(truth.labels);
   spdlog::info("ground truth: {}", truth_path.string());
+  TruthComparison comparison = CompareWithTruth(decoded.light_field, truth.light_field);
+  spdlog::info(
+      "decoded against the ideal light field: {} views registered (mean weight > {}), worst shift {:.3f} px; "
+      "centre view PSNR {:.2f} dB",
+      comparison.registration.registered, TruthComparison::kRegisteredWeight, comparison.registration.worst,
+      comparison.centre_psnr_db);
+  return comparison;
 }
 
 // Depth needs a disparity range: the user's, else the light field's metadata, else the ground truth's (padded),
@@ -166,6 +175,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   // A .png/.tif is a light field (ESLF) unless a camera says it is a raw Bayer mosaic.
   const bool raw_capture =
       decode::LooksLikeLytroFile(input) || (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
+  std::optional<TruthComparison> truth_comparison;
   Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
     Bundle out;
     if (raw_capture) {
@@ -176,7 +186,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
       decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
       out.light_field = std::move(decoded.light_field);
       summary["decode"] = decoded.summary;
-      AttachSimulatorGroundTruth(input, out);
+      truth_comparison = AttachSimulatorGroundTruth(input, out);
     } else {
       out = LoadLightField(input);
     }
@@ -262,6 +272,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
       metrics["depth"] = depth::ToJson(depth::EvaluateDisparity(depth_result.disparity, *bundle.disparity));
       gt_view_disparity = segment::PropagateDisparity(*bundle.disparity, light_field.shape());
     }
+    if (truth_comparison) metrics["decode_vs_truth"] = ToJson(*truth_comparison);
     metrics["segmentation"] = segment::ScoreLabels(segmentation.labels, bundle.labels ? &*bundle.labels : nullptr,
                                                    bundle.disparity ? &*bundle.disparity : nullptr,
                                                    bundle.disparity ? &gt_view_disparity : nullptr, 2);
@@ -274,7 +285,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
                         segmentation,
                         bundle.disparity ? &*bundle.disparity : nullptr,
                         recolor ? &recolor_figures : nullptr,
-                        &focal_stack};
+                        &focal_stack,
+                        truth_comparison ? &*truth_comparison : nullptr};
     report::Report report = BuildReport(inputs, options);
     report.metrics = metrics;
     report.timings = timings;  // stages so far; the report stage itself is in summary.json

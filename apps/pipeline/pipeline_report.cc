@@ -62,6 +62,23 @@ report::Section DepthSection(const ReportInputs& inputs) {
   return section;
 }
 
+report::Section TruthComparisonSection(const TruthComparison& comparison) {
+  report::Section section{"Decoded against the ideal light field", {}, {}};
+  char caption[256];
+  std::snprintf(caption, sizeof caption,
+                "mean over channels of |gain x decoded - ideal| in linear light (one gain per channel), TURBO over "
+                "0 .. %.2f; RMS %.4f, PSNR %.2f dB",
+                kErrorPictureTop, comparison.centre_rms, comparison.centre_psnr_db);
+  section.figures.push_back({"Centre-view error", caption, CentreErrorPicture(comparison)});
+  std::snprintf(caption, sizeof caption,
+                "one cell per view (u right, v down): the larger of |dx|, |dy| registering the decoded view on the "
+                "ideal one, TURBO over 0 .. %.2f px; black: mean weight <= %.1f. %d views, worst %.3f px",
+                kRegistrationPictureTop, TruthComparison::kRegisteredWeight, comparison.registration.registered,
+                comparison.registration.worst);
+  section.figures.push_back({"Per-view registration", caption, RegistrationPicture(comparison)});
+  return section;
+}
+
 report::Section SuperpixelSection(const ReportInputs& inputs) {
   const LightField& light_field = inputs.light_field;
   const Labels& labels = inputs.segmentation.labels;
@@ -115,6 +132,7 @@ report::Report BuildReport(const ReportInputs& inputs, const PipelineOptions& op
   report.subtitle =
       (options.input.empty() ? std::string("bundled sample") : options.input.string()) + " -> " + options.out.string();
   report.sections.push_back(LightFieldSection(inputs.light_field));
+  if (inputs.truth_comparison != nullptr) report.sections.push_back(TruthComparisonSection(*inputs.truth_comparison));
   report.sections.push_back(DepthSection(inputs));
   report.sections.push_back(SuperpixelSection(inputs));
   if (inputs.recolor != nullptr) report.sections.push_back(RecolorSection(*inputs.recolor));

@@ -5,6 +5,7 @@
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/segment/lfsp.h"
 #include "pipeline.h"
+#include "truth_comparison.h"
 
 namespace lfsp::pipeline {
 
@@ -26,6 +27,7 @@ struct ReportInputs {
   const DisparityMap* ground_truth_disparity;  // may be null
   const RecolorFigures* recolor;               // may be null
   const FocalStackFigures* focal_stack;        // may be null
+  const TruthComparison* truth_comparison;  // a simulated capture's decode against its ideal light field; may be null
 };
 
 // The figures of report.html: centre view, a sweep through the views, depth, LFSP boundaries on the centre view and

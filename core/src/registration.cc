@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/view_crop.h"
 
 namespace lfsp {
 
@@ -54,6 +55,28 @@ cv::Mat GreyOf(const cv::Mat& rgb) {
   cv::Mat grey;
   cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
   return grey;
+}
+
+ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin) {
+  if (decoded.shape() != truth.shape())
+    throw Error("register views: the light fields differ in shape (" + ToString(decoded.shape()) + " and " +
+                ToString(truth.shape()) + ")");
+  ViewRegistration result;
+  const LightFieldShape& shape = truth.shape();
+  for (int v = 0; v < shape.nv; ++v)
+    for (int u = 0; u < shape.nu; ++u) {
+      ViewShift entry;
+      entry.view = {u, v};
+      entry.weight = MeanViewWeight(truth, entry.view);
+      if (entry.weight > min_weight) {
+        entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
+        entry.registered = true;
+        ++result.registered;
+        result.worst = std::max({result.worst, std::abs(entry.shift.dx), std::abs(entry.shift.dy)});
+      }
+      result.views.push_back(entry);
+    }
+  return result;
 }
 
 }  // namespace lfsp

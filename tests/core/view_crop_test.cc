@@ -106,5 +106,38 @@ TEST(MeasureShift, RecoversASubPixelTranslation) {
   EXPECT_NEAR(shift.dy, -0.07, 0.01);
 }
 
+// Every well-lit view registered; a decode displaced by a known amount in one view reads that amount there.
+TEST(RegisterViews, MeasuresEachWellLitViewAndSkipsTheDimOnes) {
+  LightField truth(LightFieldShape{5, 5, 64, 64, 3});
+  truth.EnableWeights();
+  LightField decoded(truth.shape());
+  auto pattern = [](double x, double y) {
+    return static_cast<float>(0.5 + 0.2 * std::sin(0.3 * x) * std::cos(0.23 * y));
+  };
+  for (int v = 0; v < 5; ++v)
+    for (int u = 0; u < 5; ++u) {
+      const ViewIndex view{u, v};
+      const double shift = (u == 3 && v == 2) ? 0.1 : 0.0;
+      float* w = truth.weights().ViewData(view);
+      std::fill(w, w + 64 * 64, std::max(std::abs(u - 2), std::abs(v - 2)) == 2 ? 0.3f : 0.9f);
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          for (int c = 0; c < 3; ++c) {
+            truth.View(view).at<cv::Vec3f>(y, x)[c] = pattern(x, y);
+            decoded.View(view).at<cv::Vec3f>(y, x)[c] = 0.7f * pattern(x - shift, y);
+          }
+    }
+  const ViewRegistration registration = RegisterViews(decoded, truth, 0.5, 4);
+  EXPECT_EQ(registration.registered, 9);  // the inner 3x3; the outer ring is dim
+  EXPECT_NEAR(registration.worst, 0.1, 0.01);
+  for (const ViewShift& entry : registration.views) {
+    EXPECT_EQ(entry.registered, entry.weight > 0.5);
+    if (entry.registered && !(entry.view.u == 3 && entry.view.v == 2)) {
+      EXPECT_NEAR(entry.shift.dx, 0.0, 1e-3);
+    }
+  }
+  EXPECT_THROW(RegisterViews(decoded, LightField(LightFieldShape{3, 3, 64, 64, 3}), 0.5, 4), Error);
+}
+
 }  // namespace
 }  // namespace lfsp

@@ -77,20 +77,15 @@ LightField Decode(const Capture& capture, decode::ColourMode colour) {
 
 void CheckRegistration(const LightField& decoded, const LightField& truth, const std::string& what) {
   ASSERT_EQ(decoded.shape(), truth.shape());
-  double worst = 0.0;
-  int checked = 0;
-  for (int v = 0; v < truth.shape().nv; ++v)
-    for (int u = 0; u < truth.shape().nu; ++u) {
-      const ViewIndex view{u, v};
-      if (MeanViewWeight(truth, view) <= 0.6) continue;
-      const Shift2D shift = MeasureShift(GreyOf(truth.View(view)), GreyOf(decoded.View(view)), 20);
-      worst = std::max({worst, std::abs(shift.dx), std::abs(shift.dy)});
-      ++checked;
-      EXPECT_LT(std::abs(shift.dx), 0.05) << what << " view (" << u << ", " << v << ")";
-      EXPECT_LT(std::abs(shift.dy), 0.05) << what << " view (" << u << ", " << v << ")";
-    }
-  std::printf("%s: %d views registered, worst shift %.3f px\n", what.c_str(), checked, worst);
-  EXPECT_GT(checked, 20) << what;
+  const ViewRegistration registration = RegisterViews(decoded, truth, 0.6, 20);
+  for (const ViewShift& entry : registration.views) {
+    if (!entry.registered) continue;
+    EXPECT_LT(std::abs(entry.shift.dx), 0.05) << what << " view (" << entry.view.u << ", " << entry.view.v << ")";
+    EXPECT_LT(std::abs(entry.shift.dy), 0.05) << what << " view (" << entry.view.u << ", " << entry.view.v << ")";
+  }
+  std::printf("%s: %d views registered, worst shift %.3f px\n", what.c_str(), registration.registered,
+              registration.worst);
+  EXPECT_GT(registration.registered, 20) << what;
 }
 
 void CheckStripDisparities(LightField decoded, const std::string& what) {

@@ -1,0 +1,97 @@
+#include "truth_comparison.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/core.hpp>
+
+#include "lfsp/core/visualize.h"
+
+namespace lfsp::pipeline {
+namespace {
+
+float ToLinear(float value, Transfer transfer) {
+  if (transfer == Transfer::kLinear) return value;
+  return value <= 0.04045f ? value / 12.92f : std::pow((value + 0.055f) / 1.055f, 2.4f);
+}
+
+// Per pixel, the mean over channels of |gain_c * decoded - truth|, each channel's gain fitted by least squares.
+cv::Mat CentreError(const cv::Mat& decoded, Transfer decoded_transfer, const cv::Mat& truth, Transfer truth_transfer) {
+  const int pixels = decoded.rows * decoded.cols;
+  const float* a = decoded.ptr<float>();
+  const float* b = truth.ptr<float>();
+  double cross[3] = {0, 0, 0}, square[3] = {0, 0, 0};
+  for (int i = 0; i < 3 * pixels; ++i) {
+    const double x = ToLinear(a[i], decoded_transfer), y = ToLinear(b[i], truth_transfer);
+    cross[i % 3] += x * y;
+    square[i % 3] += x * x;
+  }
+  double gain[3];
+  for (int c = 0; c < 3; ++c) gain[c] = square[c] > 0.0 ? cross[c] / square[c] : 1.0;
+  cv::Mat error(decoded.rows, decoded.cols, CV_32FC1);
+  float* e = error.ptr<float>();
+  for (int p = 0; p < pixels; ++p) {
+    double sum = 0.0;
+    for (int c = 0; c < 3; ++c)
+      sum += std::abs(gain[c] * ToLinear(a[3 * p + c], decoded_transfer) - ToLinear(b[3 * p + c], truth_transfer));
+    e[p] = static_cast<float>(sum / 3.0);
+  }
+  return error;
+}
+
+cv::Mat ColourMapped(const cv::Mat& values, float top) {
+  DisparityMap map(values.cols, values.rows);
+  values.copyTo(map.Mat());
+  return ColourMapDisparity(map, DisparityRange{0.0f, top});
+}
+
+}  // namespace
+
+TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth) {
+  TruthComparison comparison;
+  comparison.nu = truth.shape().nu;
+  comparison.nv = truth.shape().nv;
+  comparison.registration = RegisterViews(decoded, truth, TruthComparison::kRegisteredWeight, 20);
+  const ViewIndex centre = truth.shape().Centre();
+  comparison.centre_error =
+      CentreError(decoded.View(centre).clone(), decoded.transfer, truth.View(centre).clone(), truth.transfer);
+  const double mean_square = cv::mean(comparison.centre_error.mul(comparison.centre_error))[0];
+  comparison.centre_rms = std::sqrt(mean_square);
+  comparison.centre_psnr_db = mean_square > 0.0 ? -10.0 * std::log10(mean_square) : 99.0;
+  return comparison;
+}
+
+nlohmann::ordered_json ToJson(const TruthComparison& comparison) {
+  nlohmann::ordered_json views = nlohmann::ordered_json::array();
+  for (const ViewShift& entry : comparison.registration.views) {
+    if (!entry.registered) continue;
+    views.push_back({{"u", entry.view.u},
+                     {"v", entry.view.v},
+                     {"weight", entry.weight},
+                     {"dx", entry.shift.dx},
+                     {"dy", entry.shift.dy}});
+  }
+  return {{"centre_view", {{"mean_abs_error_rms", comparison.centre_rms}, {"psnr_db", comparison.centre_psnr_db}}},
+          {"registration",
+           {{"min_weight", TruthComparison::kRegisteredWeight},
+            {"views_registered", comparison.registration.registered},
+            {"worst_shift_px", comparison.registration.worst},
+            {"views", views}}}};
+}
+
+cv::Mat CentreErrorPicture(const TruthComparison& comparison) {
+  return ColourMapped(comparison.centre_error, kErrorPictureTop);
+}
+
+cv::Mat RegistrationPicture(const TruthComparison& comparison) {
+  cv::Mat cells(comparison.nv, comparison.nu, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  for (const ViewShift& entry : comparison.registration.views)
+    if (entry.registered)
+      cells.at<float>(entry.view.v, entry.view.u) =
+          static_cast<float>(std::max(std::abs(entry.shift.dx), std::abs(entry.shift.dy)));
+  const int cell = std::max(8, 240 / std::max(comparison.nu, comparison.nv));
+  return Enlarge(ColourMapped(cells, kRegistrationPictureTop), cell, cell);
+}
+
+}  // namespace lfsp::pipeline

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core/mat.hpp>
+
+#include "lfsp/core/light_field.h"
+#include "lfsp/core/registration.h"
+
+namespace lfsp::pipeline {
+
+// A decoded capture against the ideal light field the simulator wrote beside it, for the report's panel: where the
+// decode places each view (registration of every view whose mean weight is above kRegisteredWeight) and how far
+// its centre view is from the truth (per pixel, in linear light, after one gain per channel: the exposure and the
+// camera colour's white balance are not errors).
+struct TruthComparison {
+  static constexpr double kRegisteredWeight = 0.5;
+  ViewRegistration registration;
+  int nu = 0, nv = 0;
+  cv::Mat centre_error;  // CV_32FC1, mean over channels of |gain * decoded - truth|
+  double centre_rms = 0.0;
+  double centre_psnr_db = 0.0;
+};
+TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth);
+
+nlohmann::ordered_json ToJson(const TruthComparison& comparison);
+
+// The panel's two pictures (8-bit RGB): the centre view's error, TURBO over 0 .. 0.05, and one cell per view
+// coloured by its registration error, TURBO over 0 .. 0.1 px (black: not registered, too dim).
+cv::Mat CentreErrorPicture(const TruthComparison& comparison);
+cv::Mat RegistrationPicture(const TruthComparison& comparison);
+constexpr float kErrorPictureTop = 0.05f;
+constexpr float kRegistrationPictureTop = 0.1f;
+
+}  // namespace lfsp::pipeline
