@@ -13,7 +13,7 @@ namespace {
 
 float ToLinear(float value, Transfer transfer) {
   if (transfer == Transfer::kLinear) return value;
-  return value <= 0.04045f ? value / 12.92f : std::pow((value + 0.055f) / 1.055f, 2.4f);
+  return static_cast<float>(SrgbToLinear(value));
 }
 
 // Per pixel, the mean over channels of |gain_c * decoded - truth|, each channel's gain fitted by least squares.

@@ -16,8 +16,7 @@ const std::vector<float>& LinearTable() {
     std::vector<float> t(kLinearTableSize + 1);
     for (int i = 0; i <= kLinearTableSize; ++i) {
       const double v = static_cast<double>(i) / kLinearTableSize;
-      t[static_cast<std::size_t>(i)] =
-          static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+      t[static_cast<std::size_t>(i)] = static_cast<float>(lfsp::SrgbToLinear(v));  // the exact curve
     }
     return t;
   }();

@@ -109,8 +109,6 @@ void CheckStripDisparities(LightField decoded, const std::string& what) {
   }
 }
 
-float SrgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
-
 void CheckCameraColour(const LightField& camera, const LightField& truth, const std::string& what) {
   const ViewIndex centre = camera.shape().Centre();
   const cv::Mat decoded = camera.View(centre), ideal = truth.View(centre);

@@ -17,6 +17,9 @@ enum class Transfer { kLinear, kSrgb };
 std::string ToString(Transfer transfer);
 Transfer TransferFromString(const std::string& name);  // throws lfsp::Error on an unknown name
 
+// The sRGB curve's inverse (IEC 61966-2-1): an encoded value in [0, 1] to linear light.
+double SrgbToLinear(double encoded);
+
 // The size of a 4D light field: nv x nu views of height x width pixels with `channels` samples each.
 struct LightFieldShape {
   int nu = 0;
