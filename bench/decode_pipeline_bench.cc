@@ -127,19 +127,6 @@ double InnerPsnr(const LightField& decoded) {
   return 10.0 * std::log10(count / squared);
 }
 
-// RMS distance of a grid's lens centres from the simulator's true lattice, over every usable lens.
-double CentreRmsVsTruth(const decode::LensletGrid& grid, const simulate::LensletLattice& truth) {
-  double sum = 0.0;
-  for (int j = 0; j < truth.rows; ++j)
-    for (int i = 0; i < truth.columns; ++i) {
-      double x = 0.0, y = 0.0;
-      grid.Centre(i, j, x, y);
-      const PixelPosition t = truth.Centre(i, j);
-      sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
-    }
-  return std::sqrt(sum / (truth.rows * truth.columns));
-}
-
 }  // namespace
 
 LFSP_BENCH_CASE {
@@ -155,7 +142,7 @@ LFSP_BENCH_CASE {
     const simulate::LensletLattice& truth = Shot().truth;
     char text[160];
     std::snprintf(text, sizeof text, "centres rms %.4f px, rot err %.1e rad, spacing err %.1e",
-                  CentreRmsVsTruth(grid, truth), std::abs(grid.rotation - truth.rotation),
+                  decode::CentreRmsFrom(grid, truth), std::abs(grid.rotation - truth.rotation),
                   std::abs(grid.spacing_x / truth.spacing - 1.0));
     return std::string(text);
   };
@@ -223,7 +210,7 @@ LFSP_BENCH_CASE {
     const decode::LensletGrid grid = decode::FindLensletGridInCapture(shot.capture, shot.capture_metadata).grid;
     char text[160];
     std::snprintf(text, sizeof text, "%d x %d lenses, centres rms vs truth %.4f px", grid.columns, grid.rows,
-                  CentreRmsVsTruth(grid, shot.truth));
+                  decode::CentreRmsFrom(grid, shot.truth));
     return std::string(text);
   };
   return c;

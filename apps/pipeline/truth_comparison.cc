@@ -17,6 +17,7 @@ float ToLinear(float value, Transfer transfer) {
 }
 
 // Per pixel, the mean over channels of |gain_c * decoded - truth|, each channel's gain fitted by least squares.
+// Both are views of a light field: one contiguous CV_32FC3 block each, read in place.
 cv::Mat CentreError(const cv::Mat& decoded, Transfer decoded_transfer, const cv::Mat& truth, Transfer truth_transfer) {
   const int pixels = decoded.rows * decoded.cols;
   const float* a = decoded.ptr<float>();
@@ -54,8 +55,7 @@ TruthComparison CompareWithTruth(const LightField& decoded, const LightField& tr
   comparison.nv = truth.shape().nv;
   comparison.registration = RegisterViews(decoded, truth, TruthComparison::kRegisteredWeight, 20);
   const ViewIndex centre = truth.shape().Centre();
-  comparison.centre_error =
-      CentreError(decoded.View(centre).clone(), decoded.transfer, truth.View(centre).clone(), truth.transfer);
+  comparison.centre_error = CentreError(decoded.View(centre), decoded.transfer, truth.View(centre), truth.transfer);
   const double mean_square = cv::mean(comparison.centre_error.mul(comparison.centre_error))[0];
   comparison.centre_rms = std::sqrt(mean_square);
   comparison.centre_psnr_db = mean_square > 0.0 ? -10.0 * std::log10(mean_square) : 99.0;

@@ -9,6 +9,7 @@
 
 #include "lfsp/core/conventions.h"
 #include "lfsp/core/error.h"
+#include "lfsp/depth/detail_weight.h"
 
 namespace lfsp::depth {
 namespace {
@@ -108,10 +109,7 @@ std::vector<float> MakeFeatureImages(const LightField& light_field, const CostOp
     const cv::Mat rgb = light_field.View(view);
     cv::Mat detail(shape.height, shape.width, CV_32FC1, cv::Scalar(0));
     if (options.detail_sigma > 0.0f) {
-      cv::Mat grey;
-      cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
-      cv::GaussianBlur(grey, detail, cv::Size(), options.detail_sigma, options.detail_sigma, cv::BORDER_REFLECT);
-      cv::subtract(grey, detail, detail);
+      detail = DetailHighPass(rgb, options.detail_sigma);
       if (options.detail_normalise_sigma > 0.0f) {
         cv::Mat energy;
         cv::multiply(detail, detail, energy);

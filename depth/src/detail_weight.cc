@@ -6,17 +6,12 @@
 #include <vector>
 
 #include "lfsp/core/noise.h"
+#include "lfsp/core/registration.h"
 
 namespace lfsp::depth {
 namespace {
 
-cv::Mat Grey(const cv::Mat& rgb) {
-  cv::Mat grey;
-  cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
-  return grey;
-}
-
-// The high-pass of MakeFeatureImages (before its contrast normalisation).
+// The high-pass of DetailHighPass on a single-channel image.
 cv::Mat HighPass(const cv::Mat& grey, double sigma) {
   cv::Mat low;
   cv::GaussianBlur(grey, low, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
@@ -45,13 +40,15 @@ double MedianLocalRms(const cv::Mat& detail, double window_sigma) {
 
 }  // namespace
 
+cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma) { return HighPass(GreyOf(rgb), sigma); }
+
 float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
                       const CostOptions& options) {
   // Unsmoothed views are clean ones (PresmoothSigmaForNoise, PresmoothFloorFor): their detail term stays whole.
   if (!(options.detail_sigma > 0.0f) || !(presmooth_sigma > 0.0)) return 1.0f;
   const double noise_in_band = EstimateNoiseFloor(raw_centre) * BandKernelNorm(presmooth_sigma, options.detail_sigma);
   const double window = options.detail_normalise_sigma > 0.0f ? options.detail_normalise_sigma : 4.0;
-  const double signal = MedianLocalRms(HighPass(Grey(smoothed_centre), options.detail_sigma), window);
+  const double signal = MedianLocalRms(DetailHighPass(smoothed_centre, options.detail_sigma), window);
   const double margin = kDetailNoiseMargin * noise_in_band;
   if (!(signal * signal + margin * margin > 0.0)) return 1.0f;
   return static_cast<float>(signal * signal / (signal * signal + margin * margin));

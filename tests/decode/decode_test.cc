@@ -167,19 +167,6 @@ double RowShiftEnergyShare(const LightField& light_field, double gain) {
   return row_shift / total;
 }
 
-// RMS distance of a grid's lens centres from the simulator's true lattice, over every usable lens.
-double CentreRmsVsTruth(const LensletGrid& grid, const simulate::LensletLattice& truth) {
-  double sum = 0.0;
-  for (int j = 0; j < truth.rows; ++j)
-    for (int i = 0; i < truth.columns; ++i) {
-      double x = 0.0, y = 0.0;
-      grid.Centre(i, j, x, y);
-      const PixelPosition t = truth.Centre(i, j);
-      sum += (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
-    }
-  return std::sqrt(sum / (truth.rows * truth.columns));
-}
-
 class CropIllumDecode : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -209,7 +196,7 @@ TEST_F(CropIllumDecode, GridModelMatchesTheSimulatorsLattice) {
   EXPECT_NEAR(grid_->rotation, truth.rotation, 1e-4);
   EXPECT_NEAR(grid_->origin_x, truth.origin_x, 0.05);
   EXPECT_NEAR(grid_->origin_y, truth.origin_y, 0.05);
-  const double rms = CentreRmsVsTruth(*grid_, truth);
+  const double rms = CentreRmsFrom(*grid_, truth);
   std::printf("  grid: %d x %d lenses, centre rms vs truth %.4f px, fit residual %.4f px\n", grid_->columns,
               grid_->rows, rms, grid_->rms_residual);
   EXPECT_LT(rms, 0.05);
@@ -230,7 +217,7 @@ TEST_F(CropIllumDecode, GridFromTheCaptureAloneMatchesTheSimulatorsLattice) {
     EXPECT_EQ(grid.fit_method, "capture periodicity");
     EXPECT_EQ(grid.columns, truth.columns);
     EXPECT_EQ(grid.rows, truth.rows);
-    const double rms = CentreRmsVsTruth(grid, truth);
+    const double rms = CentreRmsFrom(grid, truth);
     std::printf("  capture grid: %d x %d lenses, centre rms vs truth %.4f px, block rms %.4f px\n", grid.columns,
                 grid.rows, rms, grid.rms_residual);
     // Measured 0.097 px on this crop of the textured planes scene (under 0.02 px from the white-image fit on full-size

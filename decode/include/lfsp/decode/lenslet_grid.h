@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
 #include <optional>
@@ -51,6 +52,22 @@ struct LensletGrid {
   // lfsp::Error naming `source` if a field is missing or out of range.
   static LensletGrid FromJson(const nlohmann::json& json, const std::string& source);
 };
+
+// RMS distance of a grid's lens centres from a reference lattice's, over the reference's lenses 0 <= i < columns,
+// 0 <= j < rows: how far a fitted grid lies from the truth. `Reference` is any lattice with `rows`, `columns` and a
+// `Centre(i, j)` returning a point with `x` and `y` (the simulator's LensletLattice, which decode does not link).
+template <class Reference>
+double CentreRmsFrom(const LensletGrid& grid, const Reference& reference) {
+  double sum = 0.0;
+  for (int j = 0; j < reference.rows; ++j)
+    for (int i = 0; i < reference.columns; ++i) {
+      double x = 0.0, y = 0.0;
+      grid.Centre(i, j, x, y);
+      const auto truth = reference.Centre(i, j);
+      sum += (x - truth.x) * (x - truth.x) + (y - truth.y) * (y - truth.y);
+    }
+  return reference.rows * reference.columns > 0 ? std::sqrt(sum / (reference.rows * reference.columns)) : 0.0;
+}
 
 // Which micro-lens each sensor pixel lies under, as a label that differs between any two neighbouring lenses
 // ((i mod 4) + 4 (j mod 2), CV_8U): enough to keep an interpolation within one micro-image. Parallel.

@@ -6,6 +6,10 @@
 
 namespace lfsp::depth {
 
+// The detail band of the cost (before its contrast normalisation): the grey image (mean of RGB) minus its Gaussian
+// blur of `sigma` pixels.
+cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma);
+
 // The automatic CostOptions::detail_weight: how far the detail term (the normalised high-pass grey image) can be
 // trusted on these views, as a Wiener-style ratio m^2 / (m^2 + (kDetailNoiseMargin * n)^2), where
 //  - m is the median local RMS of the centre view's high-pass grey image, after the presmoothing the cost sees;
