@@ -5,11 +5,14 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "command_registry.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
 #include "lfsp/core/progress.h"
 
 namespace {
@@ -35,12 +38,19 @@ int main(int argc, char** argv) {
   app.fallthrough();
   bool verbose = false;
   bool quiet = false;
+  double max_memory_gib = 0.0;
   app.add_flag("-v,--verbose", verbose, "Log details of each step (debug level)");
   app.add_flag("-q,--quiet", quiet, "Only print errors; no progress display");
+  app.add_option("--max-memory", max_memory_gib,
+                 "Trust sizes declared in input files up to GIB gibibytes of samples (default: at most 16 GiB, and "
+                 "no more than 512x the file's own size)")
+      ->check(CLI::Range(0.001, 1.0e6));
   app.parse_complete_callback([&] {
     spdlog::set_pattern("lfsp: %v");
     spdlog::set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);
     if (quiet) lfsp::Progress::SetEnabled(false);
+    if (max_memory_gib > 0.0)
+      lfsp::SetMemoryLimit(static_cast<std::uint64_t>(max_memory_gib * static_cast<double>(1ull << 30)));
   });
   for (const auto& command : lfsp::cli::RegisteredCommands()) command.add(app);
 
@@ -57,6 +67,11 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const lfsp::Error& error) {
     PrintError(error.what());
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // Declared sizes are checked before allocating; what still runs out of memory is an input too large for this
+    // machine, which is the user's to change, not a fault of lfsp.
+    PrintError("out of memory: the input (or the options asked for) needs more memory than this machine has");
     return kExitBadInput;
   } catch (const std::exception& error) {
     PrintError(std::string("internal failure: ") + error.what());

@@ -46,21 +46,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-cv::Point ParsePoint(const std::string& text) {
-  const std::size_t comma = text.find(',');
-  try {
-    if (comma == std::string::npos) throw std::invalid_argument("no comma");
-    std::size_t used_x = 0;
-    std::size_t used_y = 0;
-    const int x = std::stoi(text.substr(0, comma), &used_x);
-    const int y = std::stoi(text.substr(comma + 1), &used_y);
-    if (used_x != comma || used_y != text.size() - comma - 1) throw std::invalid_argument("trailing characters");
-    return {x, y};
-  } catch (const std::exception&) {
-    throw Error("--at '" + text + "': expected a centre-view pixel as x,y (column,row), e.g. --at 120,88");
-  }
-}
-
 std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, const Labels& labels,
                                           nlohmann::ordered_json& how) {
   const int ways = (options.label_ids.empty() ? 0 : 1) + (options.at.empty() ? 0 : 1) + (options.mask.empty() ? 0 : 1);
@@ -71,7 +56,7 @@ std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, 
   }
   if (!options.at.empty()) {
     std::vector<cv::Point> points;
-    for (const std::string& text : options.at) points.push_back(ParsePoint(text));
+    for (const std::string& text : options.at) points.push_back(edit::ParseViewPoint(text, "--at"));
     how = {{"by", "at"}, {"points", options.at}};
     return edit::SelectAtPoints(labels, points);
   }

@@ -88,9 +88,24 @@ std::string SliceName(std::size_t index, float disparity) {
   return name;
 }
 
+// Disparities beyond this many pixels per view step move every ray out of any view: a typo, not a request.
+constexpr float kMaxDisparity = 1000.0f;
+constexpr int kMaxStack = 1000;
+
+void RequireDisparity(float disparity, const char* option) {
+  if (!std::isfinite(disparity) || std::abs(disparity) > kMaxDisparity)
+    throw Error(std::string(option) + ": " + std::to_string(disparity) + " is not a disparity in -" +
+                std::to_string(static_cast<int>(kMaxDisparity)) + ".." +
+                std::to_string(static_cast<int>(kMaxDisparity)) + " px per view step");
+}
+
 void RunRefocus(const RefocusCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.stack < 0) throw Error("--stack: expected a number of slices >= 1");
+  if (options.stack < 0 || options.stack > kMaxStack)
+    throw Error("--stack: expected a number of slices in 1.." + std::to_string(kMaxStack));
+  for (const float d : options.disparities) RequireDisparity(d, "--disparities");
+  for (const float d : options.range) RequireDisparity(d, "--range");
+  if (options.shear) RequireDisparity(*options.shear, "--shear");
   if (!options.disparities.empty() && options.stack > 0) throw Error("give either --disparities or --stack, not both");
   if (options.shear.has_value() != !options.out_lf.empty())
     throw Error("--shear S and --out-lf OUT go together: give both or neither");

@@ -196,6 +196,9 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   });
   const LightField& light_field = bundle.light_field;
   summary["light_field"] = ToString(light_field.shape());
+  // What depends on the view size is checked before depth, the first long stage.
+  segment::RequireSuperpixelSizeFits(options.segment.size, light_field.shape(), "--size");
+  if (recolor) edit::RequirePointsInside(recolor->points, light_field.shape().width, light_field.shape().height);
 
   const depth::DepthResult depth_result = stages.Run("depth", [&] {
     depth::DepthResult estimate = depth::EstimateDepth(light_field, WithDisparityRange(options.depth, bundle));

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "lfsp/core/error.h"
+#include "lfsp/edit/selection.h"
 
 namespace lfsp::pipeline {
 namespace {
@@ -26,6 +27,17 @@ double Number(const std::string& text, const std::string& key) {
   throw Error("--recolor: " + key + "='" + text + "' is not a number");
 }
 
+// A non-negative label id; 1e20, nan and 3.5 are refused rather than cast.
+int Integer(const std::string& text, const std::string& key) {
+  try {
+    std::size_t used = 0;
+    const int value = std::stoi(text, &used);
+    if (used == text.size() && value >= 0) return value;
+  } catch (const std::exception&) {
+  }
+  throw Error("--recolor: " + key + "='" + text + "' is not a label id (an integer >= 0)");
+}
+
 }  // namespace
 
 RecolorSpec ParseRecolorSpec(const std::string& text) {
@@ -36,14 +48,10 @@ RecolorSpec ParseRecolorSpec(const std::string& text) {
     const std::string key = pair.substr(0, equals);
     const std::string value = pair.substr(equals + 1);
     if (key == "at") {
-      for (const std::string& point : Split(value, '+')) {
-        const auto comma = point.find(',');
-        if (comma == std::string::npos) throw Error("--recolor: point '" + point + "' is not x,y");
-        spec.points.emplace_back(static_cast<int>(Number(point.substr(0, comma), "at")),
-                                 static_cast<int>(Number(point.substr(comma + 1), "at")));
-      }
+      for (const std::string& point : Split(value, '+'))
+        spec.points.push_back(edit::ParseViewPoint(point, "--recolor at"));
     } else if (key == "ids") {
-      for (const std::string& id : Split(value, '+')) spec.ids.push_back(static_cast<int>(Number(id, "ids")));
+      for (const std::string& id : Split(value, '+')) spec.ids.push_back(Integer(id, "ids"));
     } else if (key == "hue") {
       spec.options.adjustment.hue_degrees = static_cast<float>(Number(value, key));
     } else if (key == "saturation") {

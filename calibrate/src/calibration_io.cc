@@ -117,7 +117,9 @@ Calibration ParseCalibration(const json& j, const std::string& source) {
       c.model.H(r, col) = v.get<double>();
     }
   }
-  if (std::abs(c.model.H.determinant()) < 1e-40) throw Error(source + ": calibration matrix 'H' is singular");
+  const double determinant = c.model.H.determinant();
+  if (!std::isfinite(determinant) || std::abs(determinant) < 1e-40 || !c.model.H.inverse().allFinite())
+    throw Error(source + ": calibration matrix 'H' is singular or too extreme to invert");
   const json& d = Field(j, "distortion", source);
   c.model.distortion = {Number(d, "k1", source), Number(d, "k2", source), Number(d, "k3", source),
                         Number(d, "b1", source), Number(d, "b2", source)};

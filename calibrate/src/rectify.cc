@@ -18,6 +18,8 @@ struct Tap {
 };
 
 bool MakeTap(double coordinate, int size, double clamp_margin, Tap& tap) {
+  // NaN passes every comparison below and would become an index: a ray that does not map anywhere is outside.
+  if (!std::isfinite(coordinate)) return false;
   if (coordinate < -clamp_margin || coordinate > size - 1 + clamp_margin) return false;
   coordinate = std::clamp(coordinate, 0.0, static_cast<double>(size - 1));
   tap.lo = std::min(static_cast<int>(std::floor(coordinate)), size - 1);
@@ -50,6 +52,8 @@ LightField Rectify(const LightField& input, const RayModel& calibrated, const Ra
   output.metadata = input.metadata;
   output.EnableWeights(0.0f);
   const Matrix5d to_measured = calibrated.H.inverse();
+  if (!to_measured.allFinite() || !rectified.H.allFinite())
+    throw Error("rectify: the calibration matrix H cannot be inverted in floating point");
   const int channels = shape.channels;
   const int rows = shape.nv * shape.nu * shape.height;
 

@@ -11,6 +11,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
 
 namespace lfsp {
 namespace fs = std::filesystem;
@@ -92,6 +93,9 @@ LightField ReadLightFieldDataset(const H5::H5File& file, const std::string& name
   shape.height = static_cast<int>(dims[2]);
   shape.width = static_cast<int>(dims[3]);
   shape.channels = static_cast<int>(std::min<hsize_t>(dims[4], 3));
+  // Samples become float32 in memory (all of RGBA while the alpha channel is dropped).
+  CheckDeclaredAllocation(name + ": dataset LF", SaturatingBytes({dims.begin(), dims.end()}, sizeof(float)),
+                          FileBytes(name));
   LightField light_field(shape);
   if (static_cast<int>(dims[4]) == shape.channels) {
     ReadSamplesAsFloat(dataset, light_field.data(), light_field.size(), name + ": LF");
@@ -137,6 +141,7 @@ Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const
   } else {
     ThrowFileError(where, "has shape " + DimsText(dims) + ", expected nv x nu x H x W or H x W");
   }
+  RequireValidLabelValues(labels, where);
   return labels;
 }
 
@@ -152,6 +157,9 @@ std::optional<DisparityMap> ReadOldHciDisparity(const H5::H5File& file, const Li
   const H5::DataSet dataset = file.openDataSet("GT_DEPTH");
   const std::vector<hsize_t> dims = Dimensions(dataset);
   CheckSpatialMatch(dims, shape, name + ": dataset GT_DEPTH");
+  if (dims.size() == 4 && (dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu)))
+    ThrowFileError(name,
+                   "dataset GT_DEPTH has shape " + DimsText(dims) + " but the light field has " + ToString(shape));
   std::vector<float> depth(dims.size() == 4 ? shape.Views() * shape.ViewPixels() : shape.ViewPixels());
   if (dims.size() != 4 && dims.size() != 2) ThrowFileError(name, "GT_DEPTH has shape " + DimsText(dims));
   dataset.read(depth.data(), H5::PredType::NATIVE_FLOAT);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <opencv2/core.hpp>
+#include <unordered_map>
 
 #include "lfsp/core/error.h"
 
@@ -55,6 +56,26 @@ Labels::Labels(LightFieldShape shape, std::int32_t fill)
 
 cv::Mat Labels::View(ViewIndex view) { return WrapView(shape_, CV_32S, 1, ViewData(view)); }
 cv::Mat Labels::View(ViewIndex view) const { return WrapView(shape_, CV_32S, 1, ViewData(view)); }
+
+void RequireValidLabelValues(const Labels& labels, const std::string& where) {
+  const std::int32_t* values = labels.data();
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    if (values[i] < Labels::kUnlabelled)
+      ThrowFileError(
+          where, "holds label " + std::to_string(values[i]) + "; labels are -1 (unlabelled) or non-negative integers");
+}
+
+Labels DenselyRelabelled(const Labels& labels) {
+  Labels out(labels.shape());
+  std::unordered_map<std::int32_t, std::int32_t> dense;
+  const std::int32_t* in = labels.data();
+  std::int32_t* o = out.data();
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (in[i] < 0) continue;  // stays kUnlabelled
+    o[i] = dense.try_emplace(in[i], static_cast<std::int32_t>(dense.size())).first->second;
+  }
+  return out;
+}
 
 DisparityMap::DisparityMap(int width, int height, float fill)
     : width_(width),

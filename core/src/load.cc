@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
@@ -24,6 +25,28 @@ std::string LowerExtension(const fs::path& path) {
 // Ground-truth or previously saved disparity stored beside the views.
 constexpr const char* kDisparityNames[] = {"disparity.pfm", "gt_disp_lowres.pfm"};
 
+// NaN or infinite samples have no meaning as light: every stage would turn them into silent garbage (a constant
+// depth map, all-NaN scores), so a light field holding one is refused, naming the first.
+void RequireFiniteSamples(const LightField& light_field, const std::string& name) {
+  const LightFieldShape& shape = light_field.shape();
+  const auto first_bad = [](const float* values, std::size_t count) {
+    return static_cast<std::size_t>(std::find_if(values, values + count, [](float v) { return !std::isfinite(v); }) -
+                                    values);
+  };
+  const std::size_t bad = first_bad(light_field.data(), light_field.size());
+  if (bad != light_field.size()) {
+    const std::size_t ray = bad / static_cast<std::size_t>(shape.channels);
+    const std::size_t view = ray / shape.ViewPixels(), pixel = ray % shape.ViewPixels();
+    const ViewIndex at = ViewFromCameraNumber(static_cast<int>(view), shape.nu);
+    ThrowFileError(name, "holds a non-finite sample (NaN or infinity) in view (u " + std::to_string(at.u) + ", v " +
+                             std::to_string(at.v) + ") at x " + std::to_string(pixel % shape.width) + ", y " +
+                             std::to_string(pixel / shape.width));
+  }
+  if (light_field.HasWeights() &&
+      first_bad(light_field.weights().data(), light_field.weights().size()) != light_field.weights().size())
+    ThrowFileError(name, "holds a non-finite ray weight (NaN or infinity)");
+}
+
 }  // namespace
 
 LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
@@ -40,7 +63,9 @@ LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
   ThrowFileError(path.string(), "unknown light-field format (expected a views folder, a .h5 bundle or an ESLF .png)");
 }
 
-Bundle LoadLightField(const fs::path& path, const EslfOptions& eslf) {
+namespace {
+
+Bundle ReadAnyFormat(const fs::path& path, const EslfOptions& eslf) {
   switch (DetectLightFieldFormat(path)) {
     case LightFieldFormat::kHdf5Bundle:
       return ReadBundle(path);
@@ -64,6 +89,14 @@ Bundle LoadLightField(const fs::path& path, const EslfOptions& eslf) {
     bundle.disparity = std::move(disparity);
     break;
   }
+  return bundle;
+}
+
+}  // namespace
+
+Bundle LoadLightField(const fs::path& path, const EslfOptions& eslf) {
+  Bundle bundle = ReadAnyFormat(path, eslf);
+  RequireFiniteSamples(bundle.light_field, path.string());
   return bundle;
 }
 

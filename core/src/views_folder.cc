@@ -1,6 +1,7 @@
 #include "lfsp/core/views_folder.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -11,6 +12,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/hci_config.h"
 #include "lfsp/core/image_io.h"
+#include "lfsp/core/input_limits.h"
 #include "views_folder_internal.h"
 
 namespace lfsp {
@@ -49,11 +51,12 @@ ViewIndex AngularSize(const Metadata& metadata, std::size_t view_count, const fs
     const Metadata& extrinsics = metadata["extrinsics"];
     if (extrinsics.contains("num_cams_x") && extrinsics.contains("num_cams_y") &&
         extrinsics["num_cams_x"].is_number_integer() && extrinsics["num_cams_y"].is_number_integer()) {
-      const int nu = extrinsics["num_cams_x"].get<int>();
-      const int nv = extrinsics["num_cams_y"].get<int>();
+      // Read wide: 4294967303 must not wrap to 7.
+      const long long nu = extrinsics["num_cams_x"].get<long long>();
+      const long long nv = extrinsics["num_cams_y"].get<long long>();
       if (nu <= 0 || nv <= 0 || nu > 64 || nv > 64)
         ThrowFileError((folder / kConfigName).string(), "num_cams_x/num_cams_y out of range");
-      return {nu, nv};
+      return {static_cast<int>(nu), static_cast<int>(nv)};
     }
   }
   const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(view_count))));
@@ -113,13 +116,29 @@ LightField ReadViewsFolder(const fs::path& folder) {
                                         std::to_string(view_count) + " (" + std::to_string(angular.u) + "x" +
                                         std::to_string(angular.v) + ")");
 
-  const ImageFile first = ReadImage(files.at(0));
+  // Every header is read, and the sizes they declare checked against the files, before anything is allocated.
+  const ImageHeader first = ReadImageHeader(files.at(0));
+  std::uint64_t file_bytes = 0;
+  for (const auto& [camera, path] : files) {
+    const ImageHeader header = camera == 0 ? first : ReadImageHeader(path);
+    if (header.width != first.width || header.height != first.height)
+      ThrowFileError(path.string(), "image is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                                        ", expected " + std::to_string(first.width) + "x" +
+                                        std::to_string(first.height) + " like " + files.at(0).filename().string());
+    file_bytes += FileBytes(path);
+  }
   LightFieldShape shape;
   shape.nu = angular.u;
   shape.nv = angular.v;
-  shape.width = first.pixels.cols;
-  shape.height = first.pixels.rows;
-  shape.channels = std::min(first.pixels.channels(), 3);
+  shape.width = first.width;
+  shape.height = first.height;
+  shape.channels = std::min(first.channels, 3);
+  CheckDeclaredAllocation(
+      folder.string(),
+      SaturatingBytes({static_cast<std::uint64_t>(view_count), static_cast<std::uint64_t>(shape.width),
+                       static_cast<std::uint64_t>(shape.height), static_cast<std::uint64_t>(shape.channels)},
+                      sizeof(float)),
+      file_bytes);
   LightField light_field(shape);
   light_field.metadata = metadata;
   light_field.transfer = TransferFromMetadata(metadata);

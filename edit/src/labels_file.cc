@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
 
 namespace lfsp::edit {
 namespace fs = std::filesystem;
@@ -40,6 +41,9 @@ Labels ReadLabelsFile(const fs::path& path) {
             static_cast<double>(dims[3]) >
         4.0e9)
       ThrowFileError(name, "dataset " + dataset_name + " is too large (more than 4e9 rays)");
+    CheckDeclaredAllocation(name + ": dataset " + dataset_name,
+                            SaturatingBytes({dims[0], dims[1], dims[2], dims[3]}, sizeof(std::int32_t)),
+                            FileBytes(path));
     LightFieldShape shape;
     shape.nv = static_cast<int>(dims[0]);
     shape.nu = static_cast<int>(dims[1]);
@@ -48,6 +52,7 @@ Labels ReadLabelsFile(const fs::path& path) {
     shape.channels = 1;
     Labels labels(shape);
     dataset.read(labels.data(), H5::PredType::NATIVE_INT32);  // HDF5 converts any integer type
+    RequireValidLabelValues(labels, name + ": dataset " + dataset_name);
     return labels;
   } catch (const H5::Exception& error) {
     ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());

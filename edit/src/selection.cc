@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <opencv2/core.hpp>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -39,17 +40,37 @@ std::vector<std::int32_t> SelectLabelIds(const Labels& labels, const std::vector
   return selection;
 }
 
+cv::Point ParseViewPoint(const std::string& text, const std::string& option) {
+  const std::size_t comma = text.find(',');
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument("no comma");
+    std::size_t used_x = 0;
+    std::size_t used_y = 0;
+    const int x = std::stoi(text.substr(0, comma), &used_x);
+    const int y = std::stoi(text.substr(comma + 1), &used_y);
+    if (used_x != comma || used_y != text.size() - comma - 1) throw std::invalid_argument("trailing characters");
+    return {x, y};
+  } catch (const std::exception&) {
+    throw Error(option + " '" + text + "': expected a centre-view pixel as x,y (column,row, integers), e.g. 120,88");
+  }
+}
+
+void RequirePointsInside(const std::vector<cv::Point>& points, int width, int height) {
+  for (const cv::Point& point : points)
+    if (point.x < 0 || point.y < 0 || point.x >= width || point.y >= height)
+      throw Error("--at " + std::to_string(point.x) + "," + std::to_string(point.y) + ": outside the centre view (" +
+                  std::to_string(width) + "x" + std::to_string(height) + ")");
+}
+
 std::vector<std::int32_t> SelectAtPoints(const Labels& labels, const std::vector<cv::Point>& points) {
   CheckLabels(labels);
   if (points.empty()) throw Error("--at: no point given");
   const LightFieldShape& shape = labels.shape();
   const ViewIndex centre = shape.Centre();
+  RequirePointsInside(points, shape.width, shape.height);
   std::vector<std::int32_t> selection;
   for (const cv::Point& point : points) {
     const std::string where = "--at " + std::to_string(point.x) + "," + std::to_string(point.y);
-    if (point.x < 0 || point.y < 0 || point.x >= shape.width || point.y >= shape.height)
-      throw Error(where + ": outside the centre view (" + std::to_string(shape.width) + "x" +
-                  std::to_string(shape.height) + ")");
     const std::int32_t label = labels.at(centre, point.y, point.x);
     if (label < 0) throw Error(where + ": the centre-view ray there is unlabelled");
     selection.push_back(label);

@@ -11,13 +11,10 @@
 #include "lab_image.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/visualize.h"
+#include "lfsp/segment/params.h"
 
 namespace lfsp::segment {
 namespace {
-
-void CheckSize(int size) {
-  if (size < 2) throw Error("baseline superpixels: size must be at least 2, got " + std::to_string(size));
-}
 
 // Names each superpixel of one view by the seed-grid cell (step `size`) that holds its centroid, so a label means
 // "the superpixel at this grid position" in every view: per-view methods have no other link between views, and this
@@ -75,7 +72,7 @@ Labels PerView(const LightField& light_field, SegmentView segment_view) {
 }  // namespace
 
 Labels SlicPerView(const LightField& light_field, const BaselineParams& params) {
-  CheckSize(params.size);
+  RequireSuperpixelSizeFits(params.size, light_field.shape(), "per-view SLIC");
   std::vector<float> lab = LabOfLightField(light_field);
   return PerView(light_field, [&](ViewIndex view) {
     cv::Ptr<cv::ximgproc::SuperpixelSLIC> slic = cv::ximgproc::createSuperpixelSLIC(
@@ -89,7 +86,7 @@ Labels SlicPerView(const LightField& light_field, const BaselineParams& params) 
 }
 
 Labels LscPerView(const LightField& light_field, const BaselineParams& params) {
-  CheckSize(params.size);
+  RequireSuperpixelSizeFits(params.size, light_field.shape(), "per-view LSC");
   return PerView(light_field, [&](ViewIndex view) {
     cv::Mat rgb8, lab8;
     cv::Mat source = DisplayEncoded(light_field.View(view), light_field.transfer);  // LSC expects sRGB

@@ -1,6 +1,8 @@
 #include "lfsp/segment/evaluate.h"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "lfsp/core/error.h"
 #include "lfsp/segment/lfsp.h"
@@ -49,6 +51,17 @@ nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOpti
   return sweep;
 }
 
+// Scoring sizes its tables by the largest label value; labels read from a file may be sparse (one label of
+// 5,000,000 in a small bundle), so those are renumbered densely first. Dense labels are used in place.
+const Labels* DenseLabels(const Labels* labels, std::optional<Labels>& storage) {
+  if (labels == nullptr) return nullptr;
+  std::int32_t largest = -1;
+  for (std::size_t i = 0; i < labels->size(); ++i) largest = std::max(largest, labels->data()[i]);
+  if (static_cast<std::uint64_t>(std::max(largest, 0)) < labels->size()) return labels;
+  storage = DenselyRelabelled(*labels);
+  return &*storage;
+}
+
 }  // namespace
 
 nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
@@ -94,8 +107,12 @@ nlohmann::json ScorePerViewLabels(const Labels& labels, const Labels* gt_labels,
   return metrics;
 }
 
-nlohmann::json EvaluateSegmentation(const EvaluationInputs& inputs, const EvaluationOptions& options) {
-  if (inputs.labels == nullptr) throw Error("evaluate segmentation: no labels to score");
+nlohmann::json EvaluateSegmentation(const EvaluationInputs& given, const EvaluationOptions& options) {
+  if (given.labels == nullptr) throw Error("evaluate segmentation: no labels to score");
+  EvaluationInputs inputs = given;
+  std::optional<Labels> dense_labels, dense_gt_labels;
+  inputs.labels = DenseLabels(given.labels, dense_labels);
+  inputs.gt_labels = DenseLabels(given.gt_labels, dense_gt_labels);
   const LightFieldShape& shape = inputs.labels->shape();
   std::optional<std::vector<DisparityMap>> views;
   if (inputs.gt_disparity != nullptr) views = PropagateDisparity(*inputs.gt_disparity, shape);

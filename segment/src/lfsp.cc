@@ -83,6 +83,7 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   Validate(params);
   const LightFieldShape& shape = light_field.shape();
   if (light_field.empty()) throw Error("LFSP: the light field is empty");
+  RequireSuperpixelSizeFits(params.size, shape, "LFSP");
   if (disparity.width() != shape.width || disparity.height() != shape.height) {
     throw Error("LFSP: disparity map is " + std::to_string(disparity.width()) + "x" +
                 std::to_string(disparity.height()) + " but the views are " + std::to_string(shape.width) + "x" +

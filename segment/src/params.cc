@@ -1,5 +1,6 @@
 #include "lfsp/segment/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -96,6 +97,14 @@ void Validate(const LfspParams& p) {
   Require(finite_non_negative(p.convergence), "convergence", "a finite value >= 0");
   Require(std::isfinite(p.presmooth) && p.presmooth <= 10.0, "presmooth", "a value <= 10 (negative = automatic)");
   Require(p.threads >= 0 && p.threads <= 1024, "threads", "an integer in 0..1024");
+}
+
+void RequireSuperpixelSizeFits(int size, const LightFieldShape& shape, const std::string& what) {
+  const int shorter = std::min(shape.width, shape.height);
+  if (size < 2 || size > shorter)
+    throw Error(what + ": superpixel size " + std::to_string(size) + " does not fit views of " +
+                std::to_string(shape.width) + "x" + std::to_string(shape.height) + " (expected 2.." +
+                std::to_string(std::max(shorter, 2)) + ")");
 }
 
 double PresmoothForNoise(double noise_sigma) { return SmoothingForNoise(noise_sigma, 40.0, 1.5); }

@@ -11,6 +11,7 @@
 #include "lab_image.h"
 #include "lfsp/core/error.h"
 #include "lfsp/segment/baselines.h"
+#include "lfsp/segment/params.h"
 
 namespace lfsp::segment {
 namespace {
@@ -27,7 +28,7 @@ struct Accumulator {
 }  // namespace
 
 Labels SlicSupervoxels(const LightField& light_field, ViewOrder order, const BaselineParams& params) {
-  if (params.size < 2) throw Error("SLIC supervoxels: size must be at least 2, got " + std::to_string(params.size));
+  RequireSuperpixelSizeFits(params.size, light_field.shape(), "SLIC supervoxels");
   const LightFieldShape& shape = light_field.shape();
   const int frames = static_cast<int>(shape.Views());
   const int w = shape.width, h = shape.height;

@@ -1,6 +1,11 @@
 #include "test_support.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+
+#include <cerrno>
 
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +13,8 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+extern char** environ;
 
 namespace lfsp::testing {
 namespace fs = std::filesystem;
@@ -36,27 +43,34 @@ TempDir::~TempDir() {
   fs::remove_all(path_, ec);
 }
 
-namespace {
-std::string ShellQuote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-}  // namespace
-
 CommandResult RunLfsp(const std::vector<std::string>& arguments) {
   const char* binary = std::getenv("LFSP_BINARY");
   if (binary == nullptr) throw std::runtime_error("LFSP_BINARY is not set (run the test through ctest)");
   TempDir capture;
-  std::string command = ShellQuote(binary);
-  for (const auto& argument : arguments) command += " " + ShellQuote(argument);
-  command +=
-      " >" + ShellQuote((capture.path() / "out").string()) + " 2>" + ShellQuote((capture.path() / "err").string());
-  const int status = std::system(command.c_str());
+  const std::string out_path = (capture.path() / "out").string(), err_path = (capture.path() / "err").string();
+  // Spawned directly (no shell) so that wait4 reports the command's own peak memory.
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_storage = {binary};
+  argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& argument : argv_storage) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, binary, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw std::runtime_error(std::string("cannot start ") + binary);
+  int status = 0;
+  struct rusage usage {};
+  while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
   CommandResult result;
   result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadBytes(capture.path() / "out");
-  result.err = ReadBytes(capture.path() / "err");
+  result.peak_rss_kb = usage.ru_maxrss;
+  result.out = ReadBytes(out_path);
+  result.err = ReadBytes(err_path);
   return result;
 }
 

@@ -33,9 +33,11 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-// Runs the built `lfsp` executable (LFSP_BINARY) with the arguments; captures exit status, stdout and stderr.
+// Runs the built `lfsp` executable (LFSP_BINARY) with the arguments; captures exit status, stdout, stderr and the
+// command's peak resident memory.
 struct CommandResult {
   int exit_status = -1;
+  long peak_rss_kb = 0;
   std::string out;
   std::string err;
 };

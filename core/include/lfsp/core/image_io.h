@@ -15,7 +15,17 @@ struct ImageFile {
   std::map<std::string, std::string> text;  // string attributes (PNG text chunks, e.g. "lfsp:nu")
 };
 
+// Reads the whole image. Its declared size is checked against the file's (lfsp/core/input_limits.h) first.
 ImageFile ReadImage(const std::filesystem::path& path);
+
+// What an image file declares, read from its header without decoding the pixels (a few small reads).
+struct ImageHeader {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int bit_depth = 8;
+};
+ImageHeader ReadImageHeader(const std::filesystem::path& path);
 
 // Reads an image straight into `destination` (pre-allocated CV_32FC(n), continuous), without an intermediate copy.
 // The file must have exactly destination's width and height and at least n channels (extra channels, such as

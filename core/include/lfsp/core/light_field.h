@@ -116,6 +116,14 @@ class Labels : public Array4D<std::int32_t> {
   cv::Mat View(ViewIndex view) const;
 };
 
+// Throws lfsp::Error naming `where` when a label is below Labels::kUnlabelled (files may hold any integer; the
+// stages index by label, so only -1 and 0.. are meaningful).
+void RequireValidLabelValues(const Labels& labels, const std::string& where);
+
+// The same segmentation with labels renumbered 0..n-1 in order of first appearance (kUnlabelled stays): scoring
+// allocates per label, so a file's sparse label values (5,000,000 in a 400 KB bundle) must not size its tables.
+Labels DenselyRelabelled(const Labels& labels);
+
 // Centre-view disparity, float32 height x width, pixels per view step (DESIGN.md convention).
 class DisparityMap {
  public:

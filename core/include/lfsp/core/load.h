@@ -13,7 +13,8 @@ enum class LightFieldFormat { kViewsFolder, kHdf5Bundle, kEslf };
 LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // throws lfsp::Error if none
 
 // Loads any supported light-field input into a bundle. For a views folder, a ground-truth disparity PFM beside the
-// views (gt_disp_lowres.pfm, as in the HCI benchmark) is loaded as the bundle's disparity.
+// views (gt_disp_lowres.pfm, as in the HCI benchmark) is loaded as the bundle's disparity. A light field holding a
+// NaN or infinite sample or ray weight is refused (lfsp::Error naming the file and the first such ray).
 Bundle LoadLightField(const std::filesystem::path& path, const EslfOptions& eslf = {});
 
 // Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, else a views

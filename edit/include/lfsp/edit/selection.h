@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
+#include <string>
 #include <vector>
 
 #include "lfsp/core/light_field.h"
@@ -13,6 +14,14 @@ namespace lfsp::edit {
 
 // The ids as given, sorted and deduplicated. Throws lfsp::Error if an id is negative or occurs in no ray.
 std::vector<std::int32_t> SelectLabelIds(const Labels& labels, const std::vector<std::int32_t>& ids);
+
+// A centre-view pixel written "x,y" (column,row, integers). Throws lfsp::Error naming `option` otherwise (1e20,
+// nan, 3.5 and trailing text are refused here, not cast).
+cv::Point ParseViewPoint(const std::string& text, const std::string& option);
+
+// Throws lfsp::Error naming the point when one lies outside a centre view of width x height: commands check this
+// before any work, SelectAtPoints again on the labels.
+void RequirePointsInside(const std::vector<cv::Point>& points, int width, int height);
 
 // The label under each point (x = column, y = row) of the centre view. Throws lfsp::Error if a point lies outside
 // the view or on an unlabelled ray.

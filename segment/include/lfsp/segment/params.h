@@ -1,6 +1,9 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
+
+#include "lfsp/core/light_field.h"
 
 namespace lfsp::segment {
 
@@ -55,5 +58,10 @@ nlohmann::json SegmentationRecord(const LfspParams& params, const std::string& d
 LfspParams ParamsFromJson(const nlohmann::json& json, const std::string& where = "parameters");
 // Throws lfsp::Error naming the parameter when a value is out of range.
 void Validate(const LfspParams& params);
+
+// Throws lfsp::Error naming `what` unless a superpixel grid step of `size` fits views of `shape`: at least 2 and at
+// most the shorter view side (OpenCV's SLIC and LSC crash on steps beyond twice it; one superpixel per view is the
+// most a segmentation can mean). Every superpixel method calls it, and the commands before any work.
+void RequireSuperpixelSizeFits(int size, const LightFieldShape& shape, const std::string& what);
 
 }  // namespace lfsp::segment

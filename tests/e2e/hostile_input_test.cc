@@ -1,0 +1,253 @@
+// Hostile input through the CLI (issue 15): each case is a file or option that crashed, allocated gigabytes or broke
+// the one-line contract before. Every case must exit 2 with one line naming the culprit, stay under a memory bound
+// and leave nothing where the output was to go.
+
+#include <H5Cpp.h>
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/image_io.h"
+#include "lfsp/core/light_field.h"
+#include "lfsp/core/pfm.h"
+#include "lfsp/core/views_folder.h"
+#include "test_support.h"
+
+namespace lfsp {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CommandResult;
+using testing::RunLfsp;
+using testing::TempDir;
+using testing::WriteBytes;
+
+constexpr long kSmallInputPeakKb = 1024L * 1024L;  // 1 GiB for inputs under 1 MB (the issue's bound)
+
+// Exit 2, exactly one line on stderr that starts with "lfsp: error: " and names `named`, memory bounded.
+void ExpectRefused(const CommandResult& result, const std::string& named) {
+  EXPECT_EQ(result.exit_status, 2) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.err.rfind("lfsp: error: ", 0), 0u) << result.err;
+  EXPECT_NE(result.err.find(named), std::string::npos) << "'" << result.err << "' does not name '" << named << "'";
+  EXPECT_LT(result.peak_rss_kb, kSmallInputPeakKb) << result.err;
+}
+
+LightField SmallLightField(int n, int width, int height) {
+  LightField light_field({n, n, width, height, 3});
+  for (std::size_t i = 0; i < light_field.size(); ++i)
+    light_field.data()[i] = static_cast<float>((i * 37) % 251) / 251.0f;
+  return light_field;
+}
+
+void WriteDataset(H5::H5File& file, const char* name, const std::vector<hsize_t>& dims, const float* values) {
+  H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
+  H5::DataSet dataset = file.createDataSet(name, H5::PredType::NATIVE_FLOAT, space);
+  dataset.write(values, H5::PredType::NATIVE_FLOAT);
+}
+
+void WriteNumberAttribute(H5::H5File& file, const char* name, double value) {
+  H5::Attribute attribute = file.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace());
+  attribute.write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+// Item 1: old-HCI GT_DEPTH of 9x9 views beside a 1x1 LF overflowed the heap.
+TEST(HostileInput, OldHciDepthWithMoreViewsThanTheLightField) {
+  TempDir temp;
+  const fs::path path = temp / "lf.h5";
+  {
+    H5::H5File file(path.string(), H5F_ACC_TRUNC);
+    const std::vector<float> lf(16 * 16 * 3, 0.5f), depth(9 * 9 * 16 * 16, 2.0f);
+    WriteDataset(file, "LF", {1, 1, 16, 16, 3}, lf.data());
+    WriteDataset(file, "GT_DEPTH", {9, 9, 16, 16}, depth.data());
+    WriteNumberAttribute(file, "dH", 1.0);
+    WriteNumberAttribute(file, "focalLength", 1.0);
+    WriteNumberAttribute(file, "shift", 0.0);
+  }
+  ExpectRefused(RunLfsp({"info", path.string()}), "GT_DEPTH");
+}
+
+// Item 2: a calibration whose H passes the finite checks but cannot be inverted in floating point.
+TEST(HostileInput, CalibrationTooExtremeToInvert) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 16, 12);
+  WriteBundle(bundle, temp / "lf.h5");
+  nlohmann::json h = nlohmann::json::array();
+  for (int r = 0; r < 5; ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int c = 0; c < 5; ++c) row.push_back(r == c ? 1e308 : 0.0);
+    h.push_back(row);
+  }
+  const nlohmann::json calibration = {{"format", "lfsp-calibration"},
+                                      {"light_field", {{"nu", 3}, {"nv", 3}, {"width", 16}, {"height", 12}}},
+                                      {"H", h},
+                                      {"distortion", {{"k1", 0}, {"k2", 0}, {"k3", 0}, {"b1", 0}, {"b2", 0}}}};
+  WriteBytes(temp / "cal.json", calibration.dump());
+  const CommandResult result = RunLfsp({"rectify", (temp / "lf.h5").string(), "--calibration",
+                                        (temp / "cal.json").string(), "--out", (temp / "out.h5").string()});
+  ExpectRefused(result, "cal.json");
+  EXPECT_FALSE(fs::exists(temp / "out.h5"));
+}
+
+// Item 3: a superpixel size beyond the views crashed inside OpenCV's SLIC; refused before any work.
+TEST(HostileInput, SuperpixelSizeLargerThanTheViews) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 64, 48);
+  bundle.disparity = DisparityMap(64, 48, 0.0f);
+  WriteBundle(bundle, temp / "lf.h5");
+  for (const char* size : {"49", "300", "1000"}) {
+    SCOPED_TRACE(size);
+    ExpectRefused(RunLfsp({"segment", (temp / "lf.h5").string(), "--size", size, "--out", (temp / "s.h5").string()}),
+                  "superpixel size");
+    EXPECT_FALSE(fs::exists(temp / "s.h5"));
+  }
+  const CommandResult pipeline =
+      RunLfsp({"pipeline", (temp / "lf.h5").string(), "--size", "130", "--out", (temp / "run").string()});
+  ExpectRefused(pipeline, "--size");
+  EXPECT_FALSE(fs::exists(temp / "run" / "disparity.pfm")) << "depth ran before the size was checked";
+}
+
+// Item 4: one huge label value sized the scoring tables (3 GB from a 400 KB bundle); labels below -1 are refused.
+TEST(HostileInput, SparseAndNegativeLabelValues) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 32, 24);
+  bundle.disparity = DisparityMap(32, 24, 0.0f);
+  Labels labels(bundle.light_field.shape(), 0);
+  for (std::size_t i = 0; i < labels.size(); i += 2) labels.data()[i] = 5'000'000;
+  bundle.labels = labels;
+  WriteBundle(bundle, temp / "sparse.h5");
+  WritePfm(*bundle.disparity, temp / "gt.pfm");
+  const CommandResult sparse = RunLfsp({"evaluate", "segmentation", (temp / "sparse.h5").string(), "--gt-disparity",
+                                        (temp / "gt.pfm").string(), "--json", (temp / "e.json").string()});
+  ASSERT_EQ(sparse.exit_status, 0) << sparse.err;
+  EXPECT_LT(sparse.peak_rss_kb, kSmallInputPeakKb);
+  const nlohmann::json scores = nlohmann::json::parse(testing::ReadBytes(temp / "e.json"));
+  EXPECT_EQ(scores["lfsp"]["labels"], 2) << scores.dump();
+
+  labels.data()[7] = -5;
+  bundle.labels = labels;
+  WriteBundle(bundle, temp / "negative.h5");
+  ExpectRefused(
+      RunLfsp({"evaluate", "segmentation", (temp / "negative.h5").string(), "--json", (temp / "n.json").string()}),
+      "label -5");
+  EXPECT_FALSE(fs::exists(temp / "n.json"));
+}
+
+std::string BigEndian32(std::uint32_t v) {
+  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                     static_cast<char>(v)};
+}
+
+std::string PngChunk(const std::string& type, const std::string& data) {
+  const std::string body = type + data;
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+  return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
+}
+
+// A well-formed PNG (valid CRCs) that declares width x height RGB8 and holds one empty IDAT: 57 bytes.
+std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
+  return "\x89PNG\r\n\x1a\n" +
+         PngChunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
+         PngChunk("IDAT", "") + PngChunk("IEND", "");
+}
+
+// Item 5: declared sizes drove allocations (a 74-byte PNG declaring 20000 x 20000, a views folder allocated from its
+// first view's header, a chunked HDF5 declaring 5 GB it does not hold).
+TEST(HostileInput, DeclaredSizesThatTheFilesDoNotHold) {
+  TempDir temp;
+  WriteBytes(temp / "huge.png", PngDeclaring(20000, 20000));
+  ExpectRefused(RunLfsp({"info", (temp / "huge.png").string()}), "huge.png");
+
+  WriteViewsFolder(SmallLightField(3, 16, 12), temp / "views");
+  WriteBytes(temp / "views" / "input_Cam000.png", PngDeclaring(3000, 3000));
+  ExpectRefused(RunLfsp({"info", (temp / "views").string()}), "input_Cam0");
+
+  const fs::path chunked = temp / "chunked.h5";
+  {
+    H5::H5File file(chunked.string(), H5F_ACC_TRUNC);
+    const hsize_t dims[5] = {9, 9, 2048, 2048, 3};
+    const hsize_t chunk[5] = {1, 1, 64, 64, 3};
+    H5::DSetCreatPropList properties;
+    properties.setChunk(5, chunk);
+    properties.setDeflate(1);
+    file.createDataSet("LF", H5::PredType::NATIVE_FLOAT, H5::DataSpace(5, dims), properties);
+  }
+  ASSERT_LT(fs::file_size(chunked), 1u << 20);
+  ExpectRefused(RunLfsp({"info", chunked.string()}), "chunked.h5");
+
+  // A genuine but extremely compressible file passes once the user vouches for it.
+  const CommandResult trusted = RunLfsp({"--max-memory", "0.5", "info", chunked.string()});
+  ExpectRefused(trusted, "--max-memory");
+}
+
+// Item 7: libpng printed its own stderr line for corrupt chunk data, before lfsp's.
+TEST(HostileInput, CorruptPngChunkGivesOneLine) {
+  TempDir temp;
+  WriteViewsFolder(SmallLightField(3, 16, 12), temp / "views");
+  const fs::path view = temp / "views" / "input_Cam004.png";
+  std::string bytes = testing::ReadBytes(view);
+  const std::size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes[idat + 6] = static_cast<char>(bytes[idat + 6] ^ 0x5A);  // one byte of compressed data
+  WriteBytes(view, bytes);
+  ExpectRefused(RunLfsp({"info", (temp / "views").string()}), "input_Cam004.png");
+}
+
+// Item 8: NaN samples were accepted silently; num_cams_x of 2^32 + 7 was read as 7.
+TEST(HostileInput, NonFiniteSamplesAndWrappingViewCounts) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 16, 12);
+  bundle.light_field.at({2, 1}, 5, 7, 1) = std::numeric_limits<float>::quiet_NaN();
+  WriteBundle(bundle, temp / "nan.h5", {SampleStorage::kFloat32, 0});
+  ExpectRefused(
+      RunLfsp({"depth", (temp / "nan.h5").string(), "--dmin", "-1", "--dmax", "1", "--out", (temp / "d.pfm").string()}),
+      "non-finite sample");
+  EXPECT_FALSE(fs::exists(temp / "d.pfm"));
+
+  WriteViewsFolder(SmallLightField(3, 16, 12), temp / "views");
+  WriteBytes(temp / "views" / "parameters.cfg", "[extrinsics]\nnum_cams_x = 4294967299\nnum_cams_y = 3\n");
+  ExpectRefused(RunLfsp({"info", (temp / "views").string()}), "num_cams_x");
+}
+
+// Item 9: options cast to int or unbounded, checked only after long work, leaving outputs behind.
+TEST(HostileInput, OptionsValidatedBeforeAnyWork) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 32, 24);
+  bundle.disparity = DisparityMap(32, 24, 0.0f);
+  WriteBundle(bundle, temp / "lf.h5");
+  for (const char* spec : {"at=1e20,5;hue=30", "at=nan,nan;hue=30", "ids=1e20;hue=30", "at=3.5,2;hue=30"}) {
+    SCOPED_TRACE(spec);
+    ExpectRefused(RunLfsp({"pipeline", (temp / "lf.h5").string(), "--recolor", spec, "--out", (temp / "run").string()}),
+                  "--recolor");
+    EXPECT_FALSE(fs::exists(temp / "run" / "disparity.pfm"));
+  }
+  ExpectRefused(RunLfsp({"pipeline", (temp / "lf.h5").string(), "--recolor", "at=500,5;hue=30", "--out",
+                         (temp / "run").string()}),
+                "outside the centre view");
+  EXPECT_FALSE(fs::exists(temp / "run" / "disparity.pfm"));
+
+  ExpectRefused(RunLfsp({"refocus", (temp / "lf.h5").string(), "--stack", "100000000", "--out", (temp / "r").string()}),
+                "--stack");
+  ExpectRefused(
+      RunLfsp({"refocus", (temp / "lf.h5").string(), "--disparities", "1e30", "--out", (temp / "r").string()}),
+      "--disparities");
+  EXPECT_FALSE(fs::exists(temp / "r"));
+  for (const auto& entry : fs::directory_iterator(temp.path()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+}  // namespace
+}  // namespace lfsp
