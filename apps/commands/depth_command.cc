@@ -60,7 +60,7 @@ void RunDepth(const DepthCommandOptions& options) {
   summary["outputs"] = {{"disparity", paths.disparity.string()},
                         {"preview", paths.preview.string()},
                         {"confidence", paths.confidence.string()}};
-  summary["range"] = {{"min", result.range.min}, {"max", result.range.max}};
+  summary["range"] = {{"min", result.range.min}, {"max", result.range.max}, {"source", result.range_source}};
   summary["parameters"] = depth::ToJson(method);
   summary["occlusion_candidates"] = result.occlusion_candidates;
   summary["noise_sigma"] = result.noise_sigma;
@@ -93,9 +93,11 @@ void AddDepthCommand(CLI::App& parent) {
       ->check(CLI::ExistingPath);
   command->add_option("--out", options->output, "Output disparity PFM (HCI convention)")->required();
   AddViewsOption(command, options->views);
-  command->add_option("--dmin", options->dmin,
-                      "Smallest disparity (px per view step); default: disp_min of parameters.cfg / bundle metadata");
-  command->add_option("--dmax", options->dmax, "Largest disparity; default: disp_max of the metadata");
+  command->add_option(
+      "--dmin", options->dmin,
+      "Smallest disparity (px per view step); default: disp_min of parameters.cfg / bundle metadata, else "
+      "estimated from the views (a coarse sweep, logged)");
+  command->add_option("--dmax", options->dmax, "Largest disparity; default: disp_max of the metadata, else estimated");
   command->add_option("--labels", method.labels, "Number of disparity labels")
       ->capture_default_str()
       ->check(CLI::Range(3, 1024));

@@ -107,7 +107,7 @@ std::optional<TruthComparison> AttachSimulatorGroundTruth(const fs::path& captur
 }
 
 // Depth needs a disparity range: the user's, else the light field's metadata, else the ground truth's (padded),
-// else a range that covers Lytro captures (+-2 px per view step).
+// else depth estimates it from the views.
 depth::DepthOptions WithDisparityRange(depth::DepthOptions options, const Bundle& bundle) {
   if (options.range || DisparityRangeFromMetadata(bundle.light_field.metadata)) return options;
   if (bundle.disparity) {
@@ -123,9 +123,7 @@ depth::DepthOptions WithDisparityRange(depth::DepthOptions options, const Bundle
     spdlog::info("disparity range {:.2f} .. {:.2f} from the ground truth", options.range->min, options.range->max);
     return options;
   }
-  options.range = DisparityRange{-2.0f, 2.0f};
-  spdlog::warn("no disparity range in the input; using -2 .. 2 px per view step (set --dmin/--dmax)");
-  return options;
+  return options;  // depth estimates it from the views
 }
 
 // Bytes of every file the run wrote (relative paths), and their total.
@@ -206,7 +204,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     WritePfm(estimate.confidence, options.out / "confidence.pfm");
     return estimate;
   });
-  summary["disparity_range"] = {{"min", depth_result.range.min}, {"max", depth_result.range.max}};
+  summary["disparity_range"] = {
+      {"min", depth_result.range.min}, {"max", depth_result.range.max}, {"source", depth_result.range_source}};
   summary["depth_choices"] = {{"noise_sigma", depth_result.noise_sigma},
                               {"presmooth_sigma", depth_result.presmooth_sigma},
                               {"excluded_ring", depth_result.excluded_ring},

@@ -1,11 +1,14 @@
 #include "lfsp/depth/depth_estimator.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 #include <string>
 
 #include "lfsp/core/error.h"
 #include "lfsp/depth/detail_weight.h"
+#include "lfsp/depth/disparity_range.h"
 #include "lfsp/depth/presmooth.h"
 
 namespace lfsp::depth {
@@ -28,22 +31,33 @@ class StepTimer {
 
 }  // namespace
 
-DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options) {
+DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options, std::string* source) {
   std::optional<DisparityRange> range = options.range;
-  if (!range) range = DisparityRangeFromMetadata(light_field.metadata);
+  std::string from = "options";
   if (!range) {
-    throw Error("depth: no disparity range: give --dmin/--dmax, or a light field whose metadata has disp_min/disp_max");
+    range = DisparityRangeFromMetadata(light_field.metadata);
+    from = "metadata";
+  }
+  if (!range) {
+    const RangeEstimate estimate = EstimateDisparityRange(light_field);
+    range = estimate.range;
+    from = "estimated from the views";
+    spdlog::info(
+        "disparity range {:.2f} .. {:.2f} px per view step estimated from the views (coarse sweep over "
+        "+-{:.1f}: {} pixels measured {:.2f} .. {:.2f}); --dmin/--dmax override it",
+        range->min, range->max, estimate.searched, estimate.pixels_used, estimate.measured.min, estimate.measured.max);
   }
   if (!std::isfinite(range->min) || !std::isfinite(range->max) || !(range->max > range->min)) {
     throw Error("depth: invalid disparity range [" + std::to_string(range->min) + ", " + std::to_string(range->max) +
                 "]");
   }
+  if (source) *source = from;
   return *range;
 }
 
 DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options) {
   DepthResult result;
-  result.range = ResolveDisparityRange(light_field, options);
+  result.range = ResolveDisparityRange(light_field, options, &result.range_source);
   const std::vector<float> disparities = LabelDisparities(result.range.min, result.range.max, options.labels);
   if (light_field.shape().channels != 3) {
     throw Error("depth: the light field must hold RGB views (got " + ToString(light_field.shape()) + ")");

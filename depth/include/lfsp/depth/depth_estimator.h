@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/metadata.h"
@@ -37,6 +38,7 @@ struct DepthResult {
   DisparityMap disparity;   // centre view, px per view step, HCI convention
   DisparityMap confidence;  // [0, 1]
   DisparityRange range;
+  std::string range_source;       // "options", "metadata" or "estimated from the views"
   int occlusion_candidates = 0;   // pixels that used the edge-split angular patch
   double occlusion_radius = 0.0;  // the radius used (after the automatic choice)
   double noise_sigma = 0.0;       // estimated noise of the centre view (Immerkaer), sample units
@@ -46,8 +48,10 @@ struct DepthResult {
   nlohmann::json timings;         // seconds per step
 };
 
-// The disparity range to use: the options' if given, else the metadata's; throws lfsp::Error if neither has one.
-DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options);
+// The disparity range to use: the options' if given, else the metadata's, else estimated from the views
+// (EstimateDisparityRange, logged). `source`, when given, says which.
+DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthOptions& options,
+                                     std::string* source = nullptr);
 
 // Occlusion-aware centre-view disparity: cost volume (with the half-patch choice near edges), semi-global
 // aggregation, sub-label refinement, weighted median. Throws lfsp::Error on unusable input.
