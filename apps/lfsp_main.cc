@@ -11,6 +11,7 @@
 #include <new>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
 #include "lfsp/core/progress.h"
@@ -45,6 +46,10 @@ int main(int argc, char** argv) {
                  "Trust sizes declared in input files up to GIB gibibytes of samples (default: at most 16 GiB, and "
                  "no more than 512x the file's own size)")
       ->check(CLI::Range(0.001, 1.0e6));
+  app.add_option("--views-pattern", lfsp::cli::GlobalLoadOptions().views_pattern,
+                 "How the files of a views folder are named, e.g. '{row}_{col}.png' or 'view_{row}_{col}.png' "
+                 "({index} matches a number that is ignored; the smallest row and column become view 0). Default: "
+                 "detected (HCI input_Cam###, <row>_<col>, LFToolbox <name>_<index>_<a>_<b>)");
   app.parse_complete_callback([&] {
     spdlog::set_pattern("lfsp: %v");
     spdlog::set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/calibrate/calibration.h"
 #include "lfsp/calibrate/calibration_io.h"
 #include "lfsp/calibrate/corners.h"
@@ -61,7 +62,7 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
   std::vector<calibrate::CaptureCorners> corners;
   std::vector<std::string> not_found;
   for (const auto& path : options.captures) {
-    const Bundle bundle = LoadLightField(path);
+    const Bundle bundle = LoadInput(path);
     try {
       corners.push_back(calibrate::DetectCaptureCorners(bundle.light_field, path, detection));
       const auto& c = corners.back();

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
 #include "lfsp/depth/depth_estimator.h"
@@ -45,7 +46,7 @@ depth::DepthOptions MethodOptions(const DepthCommandOptions& options) {
 void RunDepth(const DepthCommandOptions& options) {
   const depth::DepthOptions method = MethodOptions(options);
   const auto start = std::chrono::steady_clock::now();
-  Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadInput(options.input);
   const nlohmann::json views = SelectViews(bundle, options.views, options.input);
   const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("{}: {}", options.input, ToString(bundle.light_field.shape()));

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
@@ -184,11 +185,11 @@ void RunInfo(const InfoOptions& options) {
     info["format"] = "PFM disparity map";
     info["disparity"] = DescribeDisparity(ReadPfm(path));
   } else {
-    EslfOptions eslf;
-    if (options.eslf_nu > 0) eslf.nu = options.eslf_nu;
-    if (options.eslf_nv > 0) eslf.nv = options.eslf_nv;
+    LoadOptions load = GlobalLoadOptions();
+    if (options.eslf_nu > 0) load.eslf.nu = options.eslf_nu;
+    if (options.eslf_nv > 0) load.eslf.nv = options.eslf_nv;
     const LightFieldFormat format = DetectLightFieldFormat(path);
-    info = DescribeBundle(LoadLightField(path, eslf), format);
+    info = DescribeBundle(LoadLightField(path, load), format);
   }
   if (options.json) {
     std::cout << info.dump(2) << std::endl;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
@@ -94,7 +95,7 @@ void RunRecolor(const RecolorCommandOptions& options) {
   summary["input"] = options.input;
 
   auto step = std::chrono::steady_clock::now();
-  Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadInput(options.input);
   if (!options.labels.empty()) {
     bundle.labels = edit::ReadLabelsFile(options.labels);
   } else if (!bundle.labels) {

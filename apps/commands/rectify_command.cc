@@ -10,6 +10,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/calibrate/calibration_io.h"
 #include "lfsp/calibrate/rectify.h"
 #include "lfsp/core/error.h"
@@ -33,7 +34,7 @@ void RunRectify(const RectifyCommandOptions& options) {
   if (options.inverse_iterations < 0 || options.inverse_iterations > 100)
     throw Error("--inverse-iterations must be in 0..100");
   const calibrate::Calibration calibration = calibrate::ReadCalibration(options.calibration);
-  Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadInput(options.input);
   const LightFieldShape& shape = bundle.light_field.shape();
   const LightFieldShape& expected = calibration.shape;
   if (shape.nu != expected.nu || shape.nv != expected.nv || shape.width != expected.width ||

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
@@ -120,7 +121,7 @@ void RunRefocus(const RefocusCommandOptions& options) {
   summary["input"] = options.input;
 
   auto step = std::chrono::steady_clock::now();
-  Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadInput(options.input);
   summary["views"] = SelectViews(bundle, options.views, options.input);
   const LightField& light_field = bundle.light_field;
   timings["load_s"] = SecondsSince(step);

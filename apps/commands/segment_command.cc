@@ -12,6 +12,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/load.h"
@@ -44,7 +45,7 @@ std::filesystem::path Beside(const std::filesystem::path& output, const std::str
 
 void RunSegment(const SegmentCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  Bundle bundle = LoadLightField(options.input);
+  Bundle bundle = LoadInput(options.input);
   const nlohmann::json views = SelectViews(bundle, options.views, options.input);
   DisparityMap disparity;
   std::string disparity_source;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 
+#include "../input_loading.h"
 #include "../report/html_report.h"
 #include "../summary.h"
 #include "../view_selection.h"
@@ -186,7 +187,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
       summary["decode"] = decoded.summary;
       truth_comparison = AttachSimulatorGroundTruth(input, out);
     } else {
-      out = LoadLightField(input);
+      out = cli::LoadInput(input);
     }
     // The light field is stored once, in segmentation.h5, after the views to process are chosen.
     summary["views"] = cli::SelectViews(out, options.views, input.string());

@@ -52,11 +52,7 @@ void RequireFiniteSamples(const LightField& light_field, const std::string& name
 LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) ThrowFileError(path.string(), "no such file or folder");
-  if (fs::is_directory(path, ec)) {
-    if (!LooksLikeViewsFolder(path))
-      ThrowFileError(path.string(), "folder holds no light-field views (input_Cam000.png ...)");
-    return LightFieldFormat::kViewsFolder;
-  }
+  if (fs::is_directory(path, ec)) return LightFieldFormat::kViewsFolder;  // its naming is found when it is read
   const std::string extension = LowerExtension(path);
   if (extension == ".h5" || extension == ".hdf5") return LightFieldFormat::kHdf5Bundle;
   if (extension == ".png" || extension == ".tif" || extension == ".tiff") return LightFieldFormat::kEslf;
@@ -65,20 +61,20 @@ LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
 
 namespace {
 
-Bundle ReadAnyFormat(const fs::path& path, const EslfOptions& eslf) {
+Bundle ReadAnyFormat(const fs::path& path, const LoadOptions& options) {
   switch (DetectLightFieldFormat(path)) {
     case LightFieldFormat::kHdf5Bundle:
       return ReadBundle(path);
     case LightFieldFormat::kEslf: {
       Bundle bundle;
-      bundle.light_field = ReadEslf(path, eslf);
+      bundle.light_field = ReadEslf(path, options.eslf);
       return bundle;
     }
     case LightFieldFormat::kViewsFolder:
       break;
   }
   Bundle bundle;
-  bundle.light_field = ReadViewsFolder(path);
+  bundle.light_field = ReadViewsFolder(path, options.views_pattern);
   for (const char* name : kDisparityNames) {
     std::error_code ec;
     if (!fs::exists(path / name, ec)) continue;
@@ -94,8 +90,8 @@ Bundle ReadAnyFormat(const fs::path& path, const EslfOptions& eslf) {
 
 }  // namespace
 
-Bundle LoadLightField(const fs::path& path, const EslfOptions& eslf) {
-  Bundle bundle = ReadAnyFormat(path, eslf);
+Bundle LoadLightField(const fs::path& path, const LoadOptions& options) {
+  Bundle bundle = ReadAnyFormat(path, options);
   RequireFiniteSamples(bundle.light_field, path.string());
   return bundle;
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "lfsp/core/eslf.h"
 #include "lfsp/core/hdf5_bundle.h"
@@ -15,7 +16,11 @@ LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // 
 // Loads any supported light-field input into a bundle. For a views folder, a ground-truth disparity PFM beside the
 // views (gt_disp_lowres.pfm, as in the HCI benchmark) is loaded as the bundle's disparity. A light field holding a
 // NaN or infinite sample or ray weight is refused (lfsp::Error naming the file and the first such ray).
-Bundle LoadLightField(const std::filesystem::path& path, const EslfOptions& eslf = {});
+struct LoadOptions {
+  EslfOptions eslf;           // the angular size of an ESLF image that does not record it
+  std::string views_pattern;  // views folders: file naming such as '{row}_{col}.png' ("" = detect, views_naming.h)
+};
+Bundle LoadLightField(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, else a views
 // folder (the disparity, if any, goes beside the views as disparity.pfm).

@@ -1,15 +1,18 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "lfsp/core/light_field.h"
 
 namespace lfsp {
 
-// A light field as a folder of views, HCI style: input_Cam%03d.png numbered row-major plus parameters.cfg.
-// The angular size is read from parameters.cfg (num_cams_x / num_cams_y); without it the views must form a square.
-// Views are decoded in parallel. Any image format OpenImageIO reads works as a view if named input_CamNNN.<ext>.
-LightField ReadViewsFolder(const std::filesystem::path& folder);
+// A light field as a folder of views: HCI style (input_Cam%03d.png numbered row-major, parameters.cfg with the
+// angular size num_cams_x / num_cams_y, else a square), or any naming views_naming.h detects, or `views_pattern`
+// (--views-pattern). The detected naming is logged; parameters.cfg, when present, becomes the metadata. Every header is
+// checked before anything is allocated; views are decoded in parallel. Any image format OpenImageIO reads works as a
+// view.
+LightField ReadViewsFolder(const std::filesystem::path& folder, const std::string& views_pattern = "");
 
 struct ViewsFolderOptions {
   int bit_depth = 8;  // 8 or 16 bits per sample in the PNG files
