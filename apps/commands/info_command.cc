@@ -45,7 +45,7 @@ nlohmann::ordered_json DescribeDisparity(const DisparityMap& disparity) {
 nlohmann::ordered_json DescribeBundle(const Bundle& bundle, LightFieldFormat format) {
   const LightField& light_field = bundle.light_field;
   const LightFieldShape& shape = light_field.shape();
-  static const char* kFormatNames[] = {"views folder", "HDF5 bundle", "ESLF image"};
+  static const char* kFormatNames[] = {"views folder", "HDF5 bundle", "ESLF image", "MATLAB .mat (LF(v,u,y,x,c))"};
   nlohmann::ordered_json out;
   out["format"] = kFormatNames[static_cast<int>(format)];
   out["views"] = {{"nu", shape.nu}, {"nv", shape.nv}};

@@ -6,6 +6,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/mat_light_field.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/views_folder.h"
 #include "views_folder_internal.h"
@@ -56,7 +57,9 @@ LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
   const std::string extension = LowerExtension(path);
   if (extension == ".h5" || extension == ".hdf5") return LightFieldFormat::kHdf5Bundle;
   if (extension == ".png" || extension == ".tif" || extension == ".tiff") return LightFieldFormat::kEslf;
-  ThrowFileError(path.string(), "unknown light-field format (expected a views folder, a .h5 bundle or an ESLF .png)");
+  if (extension == ".mat") return LightFieldFormat::kMat;
+  ThrowFileError(path.string(),
+                 "unknown light-field format (expected a views folder, a .h5 bundle, an ESLF .png or a MATLAB .mat)");
 }
 
 namespace {
@@ -68,6 +71,11 @@ Bundle ReadAnyFormat(const fs::path& path, const LoadOptions& options) {
     case LightFieldFormat::kEslf: {
       Bundle bundle;
       bundle.light_field = ReadEslf(path, options.eslf);
+      return bundle;
+    }
+    case LightFieldFormat::kMat: {
+      Bundle bundle;
+      bundle.light_field = ReadMatLightField(path);
       return bundle;
     }
     case LightFieldFormat::kViewsFolder:
@@ -100,6 +108,10 @@ void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth) {
   const std::string extension = LowerExtension(path);
   if (extension == ".h5" || extension == ".hdf5") {
     WriteBundle(bundle, path, CompactBundleOptions(bundle.light_field));
+    return;
+  }
+  if (extension == ".mat") {
+    WriteMatLightField(bundle.light_field, path);
     return;
   }
   if (extension == ".png" || extension == ".tif" || extension == ".tiff") {

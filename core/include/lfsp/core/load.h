@@ -9,7 +9,7 @@
 namespace lfsp {
 
 // Which project format a path holds, judged by what it is (folder, extension, magic).
-enum class LightFieldFormat { kViewsFolder, kHdf5Bundle, kEslf };
+enum class LightFieldFormat { kViewsFolder, kHdf5Bundle, kEslf, kMat };
 
 LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // throws lfsp::Error if none
 
@@ -22,7 +22,8 @@ struct LoadOptions {
 };
 Bundle LoadLightField(const std::filesystem::path& path, const LoadOptions& options = {});
 
-// Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, else a views
+// Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, `.mat` ->
+// LFToolbox's LF(v, u, y, x, c) with the weight channel (mat_light_field.h), else a views
 // folder (the disparity, if any, goes beside the views as disparity.pfm).
 void SaveLightField(const Bundle& bundle, const std::filesystem::path& path, int bit_depth = 8);
 
