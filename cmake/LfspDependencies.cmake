@@ -2,7 +2,7 @@
 find_package(Threads REQUIRED)
 find_package(OpenMP REQUIRED COMPONENTS CXX)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs ximgproc calib3d)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs ximgproc calib3d videoio)  # videoio: MP4 sweeps
 find_package(OpenImageIO REQUIRED)
 find_package(HDF5 REQUIRED COMPONENTS C CXX)
 find_package(ZLIB REQUIRED)  # compresses bundle chunks in parallel (core/src/hdf5_chunks.cc)

@@ -20,13 +20,8 @@ cv::Mat Thumbnail(const cv::Mat& rgb8) {
 
 // The views along the middle row, then down the middle column: the parallax a person looks for.
 std::vector<cv::Mat> ViewSweep(const LightField& light_field) {
-  const LightFieldShape& shape = light_field.shape();
-  const ViewIndex centre = shape.Centre();
-  std::vector<cv::Mat> frames;
-  for (int u = 0; u < shape.nu; ++u)
-    frames.push_back(Thumbnail(DisplayRgb8(light_field.View({u, centre.v}), light_field.transfer)));
-  for (int v = 0; v < shape.nv; ++v)
-    frames.push_back(Thumbnail(DisplayRgb8(light_field.View({centre.u, v}), light_field.transfer)));
+  std::vector<cv::Mat> frames = ViewSweepFrames(light_field);
+  for (cv::Mat& frame : frames) frame = Thumbnail(frame);
   return frames;
 }
 

@@ -11,6 +11,8 @@
 #include <cstring>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <vector>
 
 #include "lfsp/core/atomic_file.h"
@@ -236,6 +238,50 @@ void WriteImage(const cv::Mat& image, const std::filesystem::path& path, int bit
   if (!writer->write_image(MatType(pixels.depth()), pixels.data))
     ThrowFileError(name, "write failed: " + writer->geterror());
   if (!writer->close()) ThrowFileError(name, "write failed: " + writer->geterror());
+  output.Commit();
+}
+
+void WriteAnimation(const std::vector<cv::Mat>& frames, const std::filesystem::path& path, double frames_per_second) {
+  const std::string name = path.string();
+  if (frames.empty()) ThrowFileError(name, "refusing to write an animation without frames");
+  for (const cv::Mat& frame : frames)
+    if (frame.type() != CV_8UC3 || frame.size() != frames.front().size())
+      throw Error("WriteAnimation: frames must be 8-bit RGB of one size");
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  AtomicOutput output(path);
+  if (extension == ".gif") {
+    auto writer = OIIO::ImageOutput::create("gif");
+    if (!writer) ThrowFileError(name, "no GIF writer: " + OIIO::geterror());
+    OIIO::ImageSpec spec(frames.front().cols, frames.front().rows, 3, OIIO::TypeDesc::UINT8);
+    const int rate[2] = {static_cast<int>(std::lround(frames_per_second * 100)), 100};
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
+    spec.attribute("gif:LoopCount", 0);
+    std::vector<OIIO::ImageSpec> specs(frames.size(), spec);
+    if (!writer->open(output.temporary().string(), static_cast<int>(specs.size()), specs.data()))
+      ThrowFileError(name, "cannot create: " + writer->geterror());
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      if (i > 0 && !writer->open(output.temporary().string(), spec, OIIO::ImageOutput::AppendSubimage))
+        ThrowFileError(name, "cannot add frame " + std::to_string(i) + ": " + writer->geterror());
+      cv::Mat contiguous = frames[i].isContinuous() ? frames[i] : frames[i].clone();
+      if (!writer->write_image(OIIO::TypeDesc::UINT8, contiguous.data))
+        ThrowFileError(name, "write failed: " + writer->geterror());
+    }
+    if (!writer->close()) ThrowFileError(name, "write failed: " + writer->geterror());
+  } else if (extension == ".mp4") {
+    cv::VideoWriter video(output.temporary().string() + ".mp4", cv::CAP_FFMPEG,
+                          cv::VideoWriter::fourcc('m', 'p', '4', 'v'), frames_per_second, frames.front().size());
+    if (!video.isOpened()) ThrowFileError(name, "cannot create an MP4 (OpenCV's FFmpeg writer is not available)");
+    cv::Mat bgr;
+    for (const cv::Mat& frame : frames) {
+      cv::cvtColor(frame, bgr, cv::COLOR_RGB2BGR);
+      video.write(bgr);
+    }
+    video.release();
+    std::filesystem::rename(output.temporary().string() + ".mp4", output.temporary());
+  } else {
+    ThrowFileError(name, "unknown animation format (expected .gif or .mp4)");
+  }
   output.Commit();
 }
 

@@ -104,7 +104,7 @@ Bundle LoadLightField(const fs::path& path, const LoadOptions& options) {
   return bundle;
 }
 
-void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth) {
+void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth, const std::string& view_extension) {
   const std::string extension = LowerExtension(path);
   if (extension == ".h5" || extension == ".hdf5") {
     WriteBundle(bundle, path, CompactBundleOptions(bundle.light_field));
@@ -125,6 +125,7 @@ void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth) {
   fs::create_directories(output.temporary());
   ViewsFolderOptions options;
   options.bit_depth = bit_depth;
+  options.extension = view_extension;
   internal::WriteViewsInto(bundle.light_field, output.temporary(), options);
   if (bundle.disparity) WritePfm(*bundle.disparity, output.temporary() / kDisparityNames[0]);
   output.Commit();

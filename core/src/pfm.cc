@@ -1,15 +1,20 @@
 #include "lfsp/core/pfm.h"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <opencv2/core.hpp>
 #include <sstream>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
 
 namespace lfsp {
 namespace {
@@ -112,6 +117,32 @@ void WritePfm(const DisparityMap& disparity, const std::filesystem::path& path) 
     if (!file.flush()) ThrowFileError(path.string(), "write failed");
   }
   output.Commit();
+}
+
+void WriteDisparityPng16(const DisparityMap& disparity, const std::filesystem::path& path) {
+  float low = std::numeric_limits<float>::infinity(), high = -low;
+  const std::size_t count = static_cast<std::size_t>(disparity.width()) * static_cast<std::size_t>(disparity.height());
+  for (std::size_t i = 0; i < count; ++i)
+    if (std::isfinite(disparity.data()[i])) {
+      low = std::min(low, disparity.data()[i]);
+      high = std::max(high, disparity.data()[i]);
+    }
+  if (!(high >= low)) ThrowFileError(path.string(), "the disparity map has no finite value to write");
+  const double span = high > low ? high - low : 1.0;
+  cv::Mat encoded(disparity.height(), disparity.width(), CV_32FC1);
+  for (int y = 0; y < disparity.height(); ++y)
+    for (int x = 0; x < disparity.width(); ++x) {
+      const float d = disparity.at(y, x);
+      const double value = std::isfinite(d) ? 1.0 + std::round((d - low) / span * 65534.0) : 0.0;
+      encoded.at<float>(y, x) = static_cast<float>(value / 65535.0);
+    }
+  char low_text[32], high_text[32];
+  std::snprintf(low_text, sizeof low_text, "%.9g", static_cast<double>(low));
+  std::snprintf(high_text, sizeof high_text, "%.9g", static_cast<double>(high));
+  WriteImage(encoded, path, 16,
+             {{"lfsp:disparity_min", low_text},
+              {"lfsp:disparity_max", high_text},
+              {"lfsp:encoding", "d = min + (value - 1) / 65534 * (max - min); value 0 = no disparity"}});
 }
 
 }  // namespace lfsp

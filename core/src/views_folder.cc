@@ -122,12 +122,14 @@ void CheckReplaceableOutputFolder(const fs::path& folder) {
 void WriteViewsInto(const LightField& light_field, const fs::path& folder, const ViewsFolderOptions& options) {
   if (options.bit_depth != 8 && options.bit_depth != 16)
     throw Error("views folder bit depth must be 8 or 16, not " + std::to_string(options.bit_depth));
+  if (options.extension != ".png" && options.extension != ".tif")
+    throw Error("views folder format must be .png or .tif, not " + options.extension);
   const LightFieldShape& shape = light_field.shape();
   const int view_count = static_cast<int>(shape.Views());
   ParallelForEachView(view_count, [&](int camera) {
     const ViewIndex view = ViewFromCameraNumber(camera, shape.nu);
-    WriteImage(light_field.View(view), folder / internal::HciViewFileName("input", camera, ".png"), options.bit_depth,
-               {{"oiio:ColorSpace", light_field.transfer == Transfer::kSrgb ? "sRGB" : "linear"}});
+    WriteImage(light_field.View(view), folder / internal::HciViewFileName("input", camera, options.extension),
+               options.bit_depth, {{"oiio:ColorSpace", light_field.transfer == Transfer::kSrgb ? "sRGB" : "linear"}});
     if (light_field.HasWeights()) {
       const cv::Mat weights(shape.height, shape.width, CV_32FC1,
                             const_cast<float*>(light_field.weights().ViewData(view)));

@@ -120,4 +120,15 @@ cv::Mat Enlarge(const cv::Mat& image, int factor_x, int factor_y) {
   return out;
 }
 
+std::vector<cv::Mat> ViewSweepFrames(const LightField& light_field) {
+  const LightFieldShape& shape = light_field.shape();
+  const ViewIndex centre = shape.Centre();
+  std::vector<cv::Mat> frames;
+  for (int u = 0; u < shape.nu; ++u)
+    frames.push_back(DisplayRgb8(light_field.View({u, centre.v}), light_field.transfer));
+  for (int v = 0; v < shape.nv; ++v)
+    frames.push_back(DisplayRgb8(light_field.View({centre.u, v}), light_field.transfer));
+  return frames;
+}
+
 }  // namespace lfsp

@@ -4,6 +4,7 @@
 #include <map>
 #include <opencv2/core/mat.hpp>
 #include <string>
+#include <vector>
 
 namespace lfsp {
 
@@ -26,6 +27,10 @@ struct ImageHeader {
   int bit_depth = 8;
 };
 ImageHeader ReadImageHeader(const std::filesystem::path& path);
+
+// An animation of 8-bit RGB frames, by extension: `.gif` (OpenImageIO, looping) or `.mp4` (OpenCV's FFmpeg
+// writer, MPEG-4 part 2). Written under a temporary name and renamed when complete.
+void WriteAnimation(const std::vector<cv::Mat>& frames, const std::filesystem::path& path, double frames_per_second);
 
 // Reads an image straight into `destination` (pre-allocated CV_32FC(n), continuous), without an intermediate copy.
 // The file must have exactly destination's width and height and at least n channels (extra channels, such as

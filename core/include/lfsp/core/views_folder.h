@@ -15,7 +15,8 @@ namespace lfsp {
 LightField ReadViewsFolder(const std::filesystem::path& folder, const std::string& views_pattern = "");
 
 struct ViewsFolderOptions {
-  int bit_depth = 8;  // 8 or 16 bits per sample in the PNG files
+  int bit_depth = 8;               // 8 or 16 bits per sample
+  std::string extension = ".png";  // ".png" or ".tif" (16-bit TIFF views for tools that want them)
 };
 
 // Writes input_Cam%03d.png (and parameters.cfg from the metadata) into `folder`, through a temporary folder renamed

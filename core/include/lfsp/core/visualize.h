@@ -2,6 +2,7 @@
 
 #include <opencv2/core/mat.hpp>
 #include <optional>
+#include <vector>
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/metadata.h"
@@ -24,6 +25,10 @@ cv::Mat ColourMapDisparity(const DisparityMap& disparity, std::optional<Disparit
 // Epipolar-plane images. Horizontal: row y of views (u, v) for u = 0..nu-1 -> nu x W image (row = u).
 // Vertical: column x of views (u, v) for v = 0..nv-1 -> H x nv image (column = v), i.e. transposed so that
 // the spatial axis stays vertical like in the view itself.
+// The views along the middle row, left to right, then down the middle column, top to bottom, as 8-bit RGB: the
+// frames of a view-sweep animation (the report's, `lfsp convert LF sweep.gif`).
+std::vector<cv::Mat> ViewSweepFrames(const LightField& light_field);
+
 cv::Mat HorizontalEpi(const LightField& light_field, int y, int v);
 cv::Mat VerticalEpi(const LightField& light_field, int x, int u);
 cv::Mat HorizontalEpi(const Labels& labels, int y, int v);  // CV_32SC1
