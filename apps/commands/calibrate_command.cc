@@ -19,6 +19,7 @@
 #include "lfsp/calibrate/corners.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
+#include "lfsp/core/progress.h"
 #include "summary.h"
 
 namespace lfsp::cli {
@@ -61,7 +62,9 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
   // One capture in memory at a time: only its corners are kept.
   std::vector<calibrate::CaptureCorners> corners;
   std::vector<std::string> not_found;
+  Progress progress("corners", options.captures.size());  // drawn only on a terminal
   for (const auto& path : options.captures) {
+    progress.Tick(0);
     const Bundle bundle = LoadInput(path);
     try {
       corners.push_back(calibrate::DetectCaptureCorners(bundle.light_field, path, detection));
@@ -72,7 +75,9 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
       spdlog::warn("{}", e.what());
       not_found.push_back(e.what());
     }
+    progress.Tick();
   }
+  progress.Finish();
   if (corners.empty()) {
     throw Error("no " + options.corners + " checkerboard found in any of the " +
                 std::to_string(options.captures.size()) +

@@ -68,15 +68,21 @@ class StageRunner {
 // non-empty folder is never written into.
 constexpr const char* kRunMarker = ".lfsp-pipeline";
 
-void PrepareOutputFolder(const fs::path& out) {
+// The run is built in a temporary folder beside `out` and replaces it as a whole when complete, so `out` always
+// holds one consistent set (the previous run's or this one's). `out` may be absent, empty, or a previous run.
+void CheckOutputFolder(const fs::path& out) {
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec)) ThrowFileError(out.string(), "exists and is not a folder");
   if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !fs::exists(out / kRunMarker, ec))
-    ThrowFileError(out.string(), "exists, is not empty and holds no previous pipeline run; refusing to write into it");
-  fs::create_directories(out, ec);
-  if (ec) ThrowFileError(out.string(), "cannot create output folder: " + ec.message());
-  std::ofstream marker(out / kRunMarker);
-  if (!marker) ThrowFileError(out.string(), "cannot write into the output folder");
+    ThrowFileError(out.string(), "exists, is not empty and holds no previous pipeline run; refusing to replace it");
+}
+
+void MarkRunFolder(const fs::path& work) {
+  std::error_code ec;
+  fs::create_directories(work, ec);
+  if (ec) ThrowFileError(work.string(), "cannot create output folder: " + ec.message());
+  std::ofstream marker(work / kRunMarker);
+  if (!marker) ThrowFileError(work.string(), "cannot write into the output folder");
 }
 
 // Ground truth of a simulated capture, written by `lfsp simulate` beside it (ground_truth/decoded.h5), if its
@@ -162,7 +168,10 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   // Parse everything the user typed before any work, so a typo fails at once.
   const std::optional<RecolorSpec> recolor =
       options.recolor.empty() ? std::nullopt : std::optional<RecolorSpec>(ParseRecolorSpec(options.recolor));
-  PrepareOutputFolder(options.out);
+  CheckOutputFolder(options.out);
+  AtomicOutput run(options.out);  // also removes what a killed run left beside it
+  const fs::path work = run.temporary();
+  MarkRunFolder(work);
 
   PipelineResult result;
   nlohmann::ordered_json& summary = result.summary;
@@ -201,8 +210,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
 
   const depth::DepthResult depth_result = stages.Run("depth", [&] {
     depth::DepthResult estimate = depth::EstimateDepth(light_field, WithDisparityRange(options.depth, bundle));
-    WritePfm(estimate.disparity, options.out / "disparity.pfm");
-    WritePfm(estimate.confidence, options.out / "confidence.pfm");
+    WritePfm(estimate.disparity, work / "disparity.pfm");
+    WritePfm(estimate.confidence, work / "confidence.pfm");
     return estimate;
   });
   summary["disparity_range"] = {
@@ -222,7 +231,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     labelled.labels = std::move(lfsp.labels);
     // As `lfsp segment` writes it: the parameters travel with the labels (evaluate re-runs the refocus sweep).
     labelled.light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.segment, "lfsp depth");
-    WriteBundle(labelled, options.out / "segmentation.h5", CompactBundleOptions(labelled.light_field));
+    WriteBundle(labelled, work / "segmentation.h5", CompactBundleOptions(labelled.light_field));
     bundle.light_field = std::move(labelled.light_field);
     lfsp.labels = std::move(*labelled.labels);
     return lfsp;
@@ -238,12 +247,12 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
       Bundle recoloured;
       recoloured.light_field = light_field;
       const edit::RecolorStats stats = edit::Recolor(recoloured.light_field, labels, selection, recolor->options);
-      SaveLightField(recoloured, options.out / "recolored.h5");
+      SaveLightField(recoloured, work / "recolored.h5");
       const ViewIndex centre = light_field.shape().Centre();
       recolor_figures.before = DisplayRgb8(light_field.View(centre), light_field.transfer);
       recolor_figures.after = DisplayRgb8(recoloured.light_field.View(centre), light_field.transfer);
-      WriteImage(recolor_figures.before, options.out / "recolor_before.png");
-      WriteImage(recolor_figures.after, options.out / "recolor_after.png");
+      WriteImage(recolor_figures.before, work / "recolor_before.png");
+      WriteImage(recolor_figures.after, work / "recolor_after.png");
       recolor_figures.selected_labels = selection.size();
       summary["recolor"] = {{"spec", options.recolor},
                             {"selected_labels", selection.size()},
@@ -258,12 +267,12 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     focal_stack.disparities =
         edit::EvenlySpacedDisparities(depth_result.range.min, depth_result.range.max, options.focal_stack_slices);
     const std::vector<cv::Mat> slices = edit::FocalStack(light_field, focal_stack.disparities);
-    fs::create_directories(options.out / "focal_stack");
+    fs::create_directories(work / "focal_stack");
     for (std::size_t i = 0; i < slices.size(); ++i) {
       focal_stack.slices.push_back(DisplayRgb8(slices[i], light_field.transfer));
       char name[64];
       std::snprintf(name, sizeof name, "slice_%02zu_d%+.2f.png", i, focal_stack.disparities[i]);
-      WriteImage(focal_stack.slices.back(), options.out / "focal_stack" / name);
+      WriteImage(focal_stack.slices.back(), work / "focal_stack" / name);
     }
     return 0;
   });
@@ -293,13 +302,9 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     report::Report report = BuildReport(inputs, options);
     report.metrics = metrics;
     report.timings = timings;  // stages so far; the report stage itself is in summary.json
-    AtomicOutput html(options.out / "report.html");
-    {
-      std::ofstream file(html.temporary());
-      file << report::RenderHtml(report);
-      if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
-    }
-    html.Commit();
+    std::ofstream file(work / "report.html");
+    file << report::RenderHtml(report);
+    if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
     return 0;
   });
 
@@ -307,10 +312,11 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
                            {"depth_labels", options.depth.labels},
                            {"focal_stack_slices", options.focal_stack_slices}};
   summary["metrics"] = metrics;
-  summary["output_bytes"] = OutputSizes(options.out);
+  summary["output_bytes"] = OutputSizes(work);
   summary["timings"] = timings;
   summary["wall_seconds"] = std::chrono::duration<double>(Clock::now() - wall_start).count();
-  cli::WriteJsonSummary(summary, options.out / "summary.json");
+  cli::WriteJsonSummary(summary, work / "summary.json");
+  run.Commit();
   result.report = options.out / "report.html";
   return result;
 }

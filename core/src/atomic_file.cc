@@ -1,7 +1,9 @@
 #include "lfsp/core/atomic_file.h"
 
 #include <random>
+#include <string>
 #include <system_error>
+#include <vector>
 
 #include "lfsp/core/error.h"
 
@@ -9,16 +11,41 @@ namespace lfsp {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr const char* kTemporaryTag = ".tmp-";
+
 fs::path TemporaryNameFor(const fs::path& destination) {
   std::random_device device;
   const unsigned tag = device();
   // Keep the extension last ("out.tmp-123.png") so format detection by extension still works on the temporary.
   fs::path name = destination.stem();
-  name += ".tmp-" + std::to_string(tag);
+  name += kTemporaryTag + std::to_string(tag);
   name += destination.extension();
   return destination.parent_path() / name;
 }
+
+// Whether `name` is TemporaryNameFor(destination) for some tag: stem, ".tmp-", digits, extension.
+bool IsTemporaryNameOf(const std::string& name, const fs::path& destination) {
+  const std::string prefix = destination.stem().string() + kTemporaryTag;
+  const std::string extension = destination.extension().string();
+  if (name.size() <= prefix.size() + extension.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+    return false;
+  const std::string tag = name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
+  return tag.find_first_not_of("0123456789") == std::string::npos;
+}
+
 }  // namespace
+
+void RemoveStaleTemporaries(const fs::path& destination) {
+  std::error_code ec;
+  const fs::path parent = destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+  if (!fs::is_directory(parent, ec)) return;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(parent, ec))
+    if (IsTemporaryNameOf(entry.path().filename().string(), destination)) stale.push_back(entry.path());
+  for (const fs::path& path : stale) fs::remove_all(path, ec);
+}
 
 AtomicOutput::AtomicOutput(fs::path destination)
     : destination_(std::move(destination)), temporary_(TemporaryNameFor(destination_)) {
@@ -28,6 +55,7 @@ AtomicOutput::AtomicOutput(fs::path destination)
     fs::create_directories(parent, ec);
     if (ec) ThrowFileError(parent.string(), "cannot create output folder: " + ec.message());
   }
+  RemoveStaleTemporaries(destination_);
 }
 
 AtomicOutput::~AtomicOutput() {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/progress.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/white_database.h"
 
@@ -71,6 +72,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
                 ": a plain raw image needs --camera f01|illum to decode (sensor layout, optics and colour)");
   const LytroMetadata& metadata = input.metadata;
   const double read_seconds = SecondsSince(start);
+  Progress progress("decode", 3);  // white image, grid, decode; drawn only on a terminal
 
   // The white image: from the database, or (asked for, plain images, none found) estimated from the capture.
   auto step = std::chrono::steady_clock::now();
@@ -88,6 +90,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
       spdlog::warn("{}: {}; estimating the white image from the capture itself", capture_path.string(), estimate_why);
   }
   const double white_seconds = SecondsSince(step);
+  progress.Tick();
 
   // The lenslet grid: fitted on the white image (starting from its micro-lens description, or the capture's), or
   // found in the capture itself.
@@ -109,6 +112,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   }
   const double grid_seconds = SecondsSince(step);
+  progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px ({})",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
@@ -117,6 +121,8 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   CaptureDecodeResult result;
   DecodeReport report;
   result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, options.decode, &report);
+  progress.Tick();
+  progress.Finish();
   result.light_field.metadata["decode"]["white_choice"] = white->summary["why"];
   result.light_field.metadata["decode"]["white_estimated"] = white->estimated;
 

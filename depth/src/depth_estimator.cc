@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/progress.h"
 #include "lfsp/depth/detail_weight.h"
 #include "lfsp/depth/disparity_range.h"
 #include "lfsp/depth/presmooth.h"
@@ -14,20 +15,30 @@
 namespace lfsp::depth {
 namespace {
 
+// Times each step into `timings` and advances the progress display (drawn only on a terminal) by one step.
 class StepTimer {
  public:
-  explicit StepTimer(nlohmann::json& timings) : timings_(timings), start_(Clock::now()) {}
+  StepTimer(nlohmann::json& timings, std::size_t steps)
+      : timings_(timings), progress_("depth", steps), start_(Clock::now()) {}
   void Lap(const char* step) {
     const Clock::time_point now = Clock::now();
     timings_[step] = std::chrono::duration<double>(now - start_).count();
     start_ = now;
+    progress_.Tick();
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   nlohmann::json& timings_;
+  Progress progress_;
   Clock::time_point start_;
 };
+
+// How many steps EstimateDepth times (as many Lap calls as it makes).
+std::size_t StepsOf(const DepthOptions& options) {
+  return 4 + (options.aggregation_radius > 0 ? 1 : 0) + (options.regularise ? 2 : 0) +
+         (options.regularise && options.plane_fit ? 1 : 0);
+}
 
 }  // namespace
 
@@ -62,7 +73,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (light_field.shape().channels != 3) {
     throw Error("depth: the light field must hold RGB views (got " + ToString(light_field.shape()) + ")");
   }
-  StepTimer timer(result.timings);
+  StepTimer timer(result.timings, StepsOf(options));
   // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
   result.noise_sigma = EstimateChannelNoiseSigma(light_field.View(light_field.shape().Centre()));
   result.presmooth_sigma = options.presmooth_sigma < 0.0f

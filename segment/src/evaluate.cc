@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/progress.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
 #include "lfsp/segment/refocus.h"
@@ -30,7 +31,7 @@ nlohmann::json ScoreBaseline(Run run, const EvaluationInputs& inputs, const std:
   return metrics;
 }
 
-nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOptions& options) {
+nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOptions& options, Progress& progress) {
   const DisparityMap& reference =
       inputs.gt_disparity != nullptr ? *inputs.gt_disparity : *inputs.segmentation_disparity;
   nlohmann::json sweep = nlohmann::json::array();
@@ -47,6 +48,7 @@ nlohmann::json RefocusSweep(const EvaluationInputs& inputs, const EvaluationOpti
                      {"ss_reference", SelfSimilarity(carried, views)},
                      {"elr", EffectiveLabelRatio(result.labels)},
                      {"seconds", result.timings.total_seconds}});
+    progress.Tick();
   }
   return sweep;
 }
@@ -118,11 +120,15 @@ nlohmann::json EvaluateSegmentation(const EvaluationInputs& given, const Evaluat
   if (inputs.gt_disparity != nullptr) views = PropagateDisparity(*inputs.gt_disparity, shape);
   const std::vector<DisparityMap>* view_pointer = views ? &*views : nullptr;
 
+  // Drawn only on a terminal: the scoring, each baseline, each refocus level.
+  Progress progress("evaluate",
+                    1 + (options.baselines ? 4 : 0) + (options.refocus ? options.refocus_levels.size() : 0));
   nlohmann::json report;
   report["shape"] = ToString(shape);
   report["boundary_tolerance"] = options.boundary_tolerance;
   report["lfsp"] =
       ScoreLabels(*inputs.labels, inputs.gt_labels, inputs.gt_disparity, view_pointer, options.boundary_tolerance);
+  progress.Tick();
   if (options.baselines) {
     if (inputs.light_field == nullptr) throw Error("evaluate segmentation: the baselines need the light field");
     const LightField& lf = *inputs.light_field;
@@ -130,18 +136,22 @@ nlohmann::json EvaluateSegmentation(const EvaluationInputs& given, const Evaluat
     const int tol = options.boundary_tolerance;
     nlohmann::json baselines;
     baselines["slic_per_view"] = ScoreBaseline([&] { return SlicPerView(lf, b); }, inputs, view_pointer, tol, true);
+    progress.Tick();
     baselines["lsc_per_view"] = ScoreBaseline([&] { return LscPerView(lf, b); }, inputs, view_pointer, tol, true);
+    progress.Tick();
     baselines["slic_supervoxels_row_first"] =
         ScoreBaseline([&] { return SlicSupervoxels(lf, ViewOrder::kRowFirst, b); }, inputs, view_pointer, tol, false);
+    progress.Tick();
     baselines["slic_supervoxels_column_first"] = ScoreBaseline(
         [&] { return SlicSupervoxels(lf, ViewOrder::kColumnFirst, b); }, inputs, view_pointer, tol, false);
+    progress.Tick();
     report["baselines"] = baselines;
   }
   if (options.refocus) {
     if (inputs.light_field == nullptr || inputs.segmentation_disparity == nullptr) {
       throw Error("evaluate segmentation: the refocus sweep needs the light field and the disparity LFSP used");
     }
-    report["refocus"] = RefocusSweep(inputs, options);
+    report["refocus"] = RefocusSweep(inputs, options, progress);
   }
   return report;
 }

@@ -1,5 +1,7 @@
 #include "refine.h"
 
+#include "lfsp/core/progress.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -380,9 +382,11 @@ RefineReport RefineLabels(const RefineInputs& inputs, const LfspParams& params, 
   const double rays = static_cast<double>(labels.size());
   const cv::Mat disparity(labels.shape().height, labels.shape().width, CV_32F,
                           const_cast<float*>(inputs.centre_disparity));
+  Progress progress("segment", static_cast<std::size_t>(params.iterations));  // drawn only on a terminal
   for (int iteration = 0; iteration < params.iterations; ++iteration) {
     auto start = std::chrono::steady_clock::now();
     const long long moves = refiner.Sweep();
+    progress.Tick();
     report.sweep_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     start = std::chrono::steady_clock::now();
     report.moves += moves;
@@ -394,7 +398,10 @@ RefineReport RefineLabels(const RefineInputs& inputs, const LfspParams& params, 
     report.occlusion_boundaries = types.occlusion;
     report.hinge_boundaries = types.hinge;
     report.coplanar_boundaries = types.coplanar;
-    if (static_cast<double>(moves) < params.convergence * rays) break;
+    if (static_cast<double>(moves) < params.convergence * rays) {
+      progress.Tick(static_cast<std::size_t>(params.iterations - iteration - 1));  // converged: the rest is not needed
+      break;
+    }
   }
   return report;
 }

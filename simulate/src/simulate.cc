@@ -102,10 +102,6 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
   summary["seed"] = options.seed;
   const auto range = scene.DisparityRange();
   summary["scene_disparity_range"] = {range[0], range[1]};
-  if (options.calibration_poses == 0) {  // calibration sets describe their boards in each ground_truth.json
-    WriteText(SceneToJson(scene).dump(2), out_dir / "scene.json");
-    result.files.push_back("scene.json");
-  }
   const BundleWriteOptions bundle_options{options.ground_truth_storage, options.compression_level};
 
   if (options.calibration_poses > 0) {
@@ -163,6 +159,12 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
         {"exposure", capture.exposure},
         {"noise", capture.noise},
         {"hot_pixels", capture.hot_pixels}};
+  }
+  // The scene description last: a folder with scene.json holds everything rendered from it (a killed run leaves
+  // no scene.json beside missing files). Calibration sets describe their boards in each ground_truth.json.
+  if (options.calibration_poses == 0) {
+    WriteText(SceneToJson(scene).dump(2), out_dir / "scene.json");
+    result.files.push_back("scene.json");
   }
   nlohmann::json files = nlohmann::json::array();
   for (const auto& f : result.files) files.push_back(f.generic_string());

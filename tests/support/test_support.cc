@@ -6,6 +6,9 @@
 #include <sys/wait.h>
 
 #include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <thread>
 
 #include <cstdio>
 #include <cstdlib>
@@ -43,12 +46,13 @@ TempDir::~TempDir() {
   fs::remove_all(path_, ec);
 }
 
-CommandResult RunLfsp(const std::vector<std::string>& arguments) {
+namespace {
+
+// Starts the built lfsp with the arguments, stdout and stderr to the given files; returns its pid.
+pid_t SpawnLfsp(const std::vector<std::string>& arguments, const std::string& out_path, const std::string& err_path) {
   const char* binary = std::getenv("LFSP_BINARY");
   if (binary == nullptr) throw std::runtime_error("LFSP_BINARY is not set (run the test through ctest)");
-  TempDir capture;
-  const std::string out_path = (capture.path() / "out").string(), err_path = (capture.path() / "err").string();
-  // Spawned directly (no shell) so that wait4 reports the command's own peak memory.
+  // Spawned directly (no shell) so that wait4 reports the command's own peak memory, and a kill reaches lfsp.
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -62,16 +66,40 @@ CommandResult RunLfsp(const std::vector<std::string>& arguments) {
   const int spawned = posix_spawn(&pid, binary, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw std::runtime_error(std::string("cannot start ") + binary);
+  return pid;
+}
+
+int WaitFor(pid_t pid, struct rusage& usage) {
   int status = 0;
-  struct rusage usage {};
   while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
+  return status;
+}
+
+}  // namespace
+
+CommandResult RunLfsp(const std::vector<std::string>& arguments) {
+  TempDir capture;
+  const std::string out_path = (capture.path() / "out").string(), err_path = (capture.path() / "err").string();
+  const pid_t pid = SpawnLfsp(arguments, out_path, err_path);
+  struct rusage usage {};
+  const int status = WaitFor(pid, usage);
   CommandResult result;
   result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   result.peak_rss_kb = usage.ru_maxrss;
   result.out = ReadBytes(out_path);
   result.err = ReadBytes(err_path);
   return result;
+}
+
+bool RunLfspKilledAfter(const std::vector<std::string>& arguments, double seconds) {
+  TempDir capture;
+  const pid_t pid = SpawnLfsp(arguments, (capture.path() / "out").string(), (capture.path() / "err").string());
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const bool running = kill(pid, SIGKILL) == 0;
+  struct rusage usage {};
+  const int status = WaitFor(pid, usage);
+  return running && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
 }
 
 void WriteBytes(const fs::path& path, const std::string& bytes) {

@@ -43,6 +43,10 @@ struct CommandResult {
 };
 CommandResult RunLfsp(const std::vector<std::string>& arguments);
 
+// Starts lfsp with the arguments and sends it SIGKILL after `seconds`; true when it was killed (false when it had
+// already finished).
+bool RunLfspKilledAfter(const std::vector<std::string>& arguments, double seconds);
+
 void WriteBytes(const std::filesystem::path& path, const std::string& bytes);
 std::string ReadBytes(const std::filesystem::path& path);
 

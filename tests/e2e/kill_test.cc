@@ -1,0 +1,86 @@
+// Runs are atomic as a set (issue 15, item 10): SIGKILL at several points of `pipeline` and `decode`, then a rerun,
+// leaves exactly one consistent result set and no temporaries; a killed rerun leaves the previous set untouched.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace lfsp {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ReadBytes;
+using testing::RunLfsp;
+using testing::RunLfspKilledAfter;
+using testing::TempDir;
+
+// Every path under `folder` (recursively) whose name holds AtomicOutput's temporary tag.
+std::vector<fs::path> Temporaries(const fs::path& folder) {
+  std::vector<fs::path> found;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.path().filename().string().find(".tmp-") != std::string::npos) found.push_back(entry.path());
+  return found;
+}
+
+// The run's summary lists every file it wrote with its size: the folder must hold exactly those.
+void ExpectConsistentRun(const fs::path& run) {
+  ASSERT_TRUE(fs::exists(run / "summary.json"));
+  const nlohmann::json summary = nlohmann::json::parse(ReadBytes(run / "summary.json"));
+  const nlohmann::json& sizes = summary["output_bytes"];
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(run)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = fs::relative(entry.path(), run).generic_string();
+    if (name == "summary.json") continue;  // written after the sizes were taken
+    ++files;
+    ASSERT_TRUE(sizes.contains(name)) << name << " is not from this run";
+    EXPECT_EQ(sizes[name].get<std::uintmax_t>(), entry.file_size()) << name;
+  }
+  EXPECT_EQ(files + 1, sizes.size());  // + the "total" entry
+}
+
+TEST(Kill, PipelineKilledAtSeveralPointsThenRerun) {
+  TempDir temp;
+  const fs::path sample = testing::SourceDir() / "samples" / "mini-illum" / "capture.LFR";
+  const fs::path run = temp / "run";
+  const std::vector<std::string> arguments = {"pipeline", sample.string(), "--out", run.string(), "-q"};
+  ASSERT_EQ(RunLfsp(arguments).exit_status, 0);
+  ExpectConsistentRun(run);
+  const std::string first = ReadBytes(run / "summary.json");
+
+  // The reruns segment differently, so a set mixing old and new files would show in the sizes.
+  std::vector<std::string> rerun = arguments;
+  rerun.insert(rerun.end(), {"--size", "12"});
+  int killed = 0;
+  for (const double seconds : {0.15, 0.5, 0.9, 1.3}) {
+    SCOPED_TRACE(seconds);
+    if (RunLfspKilledAfter(rerun, seconds)) ++killed;
+    // Whatever was killed, the previous set is whole and unchanged.
+    EXPECT_EQ(ReadBytes(run / "summary.json"), first);
+    ExpectConsistentRun(run);
+  }
+  EXPECT_GE(killed, 2) << "the runs finished before they could be killed";
+
+  ASSERT_EQ(RunLfsp(rerun).exit_status, 0);
+  ExpectConsistentRun(run);
+  EXPECT_NE(ReadBytes(run / "summary.json"), first);
+  EXPECT_TRUE(Temporaries(temp.path()).empty()) << Temporaries(temp.path()).front();
+}
+
+TEST(Kill, DecodeKilledThenRerun) {
+  TempDir temp;
+  const fs::path sample = testing::SourceDir() / "samples" / "mini-illum" / "capture.LFR";
+  const std::vector<std::string> arguments = {"decode", sample.string(), "--out", (temp / "decoded.h5").string(), "-q"};
+  for (const double seconds : {0.1, 0.3, 0.5}) RunLfspKilledAfter(arguments, seconds);
+  ASSERT_EQ(RunLfsp(arguments).exit_status, 0);
+  EXPECT_TRUE(fs::exists(temp / "decoded.h5"));
+  EXPECT_TRUE(Temporaries(temp.path()).empty()) << Temporaries(temp.path()).front();
+  EXPECT_EQ(RunLfsp({"info", (temp / "decoded.h5").string()}).exit_status, 0);
+}
+
+}  // namespace
+}  // namespace lfsp
