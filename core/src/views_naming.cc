@@ -18,6 +18,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kImageExtensions = "png|PNG|tif|tiff|TIF|TIFF|exr|EXR|jpg|jpeg|JPG|JPEG|bmp|BMP";
+// View indices have at most this many digits (so std::stol cannot overflow); longer numbers are not indices.
+// Patterns below write it as {1,6}.
 
 // input_CamNNN.<ext> files of the folder, by camera number.
 std::map<int, fs::path> FindHciFiles(const fs::path& folder, const char* prefix) {
@@ -158,15 +160,15 @@ CompiledPattern CompilePattern(const std::string& pattern) {
   CompiledPattern compiled;
   for (std::size_t i = 0; i < pattern.size();) {
     if (pattern.compare(i, 5, "{row}") == 0) {
-      regex += "([0-9]+)";
+      regex += "([0-9]{1,6})";
       compiled.row_group = ++group;
       i += 5;
     } else if (pattern.compare(i, 5, "{col}") == 0) {
-      regex += "([0-9]+)";
+      regex += "([0-9]{1,6})";
       compiled.column_group = ++group;
       i += 5;
     } else if (pattern.compare(i, 7, "{index}") == 0) {
-      regex += "[0-9]+";
+      regex += "[0-9]+";  // ignored, so any length
       i += 7;
     } else {
       const char c = pattern[i++];
@@ -212,7 +214,8 @@ ViewsLayout FindViewsLayout(const fs::path& folder, const std::string& pattern) 
   if (const std::map<int, fs::path> hci = FindHciFiles(folder, "input"); !hci.empty()) return HciLayout(folder, hci);
 
   // LFToolbox: <name>_<index>_<a>_<b>, where the index numbers the views 1..N; a is the column.
-  static const std::regex kThreeNumbers(std::string("(.*)_([0-9]+)_([0-9]+)_([0-9]+)\\.(") + kImageExtensions + ")");
+  static const std::regex kThreeNumbers(std::string("(.*)_([0-9]{1,6})_([0-9]{1,6})_([0-9]{1,6})\\.(") +
+                                        kImageExtensions + ")");
   std::set<long> indices;
   layout = GridLayout(folder, "LFToolbox <index>_<column>_<row>", [&](const fs::path& path, std::string& prefix) {
     std::smatch match;
@@ -227,7 +230,7 @@ ViewsLayout FindViewsLayout(const fs::path& folder, const std::string& pattern) 
   if (layout && indexed) return *layout;
 
   // [prefix]<row>_<col>: the first number is the row.
-  static const std::regex kTwoNumbers(std::string("(.*?)([0-9]+)_([0-9]+)\\.(") + kImageExtensions + ")");
+  static const std::regex kTwoNumbers(std::string("(.*?)([0-9]{1,6})_([0-9]{1,6})\\.(") + kImageExtensions + ")");
   layout = GridLayout(folder, "<row>_<col>", [&](const fs::path& path, std::string& prefix) {
     std::smatch match;
     const std::string name = path.filename().string();

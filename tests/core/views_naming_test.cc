@@ -116,6 +116,12 @@ TEST(ViewsNaming, EpinetNamesAndPatterns) {
   EXPECT_THROW(ReadViewsFolder(temp / "swapped", "cam-{row}.png"), Error);  // no {col}
   EXPECT_THROW(ReadViewsFolder(temp / "swapped"), Error);                   // no naming it knows ('-')
 
+  // Numbers too long to be indices are not parsed as such (no overflow, an lfsp::Error at most).
+  fs::create_directories(temp / "long");
+  testing::WriteBytes(temp / "long" / "99999999999999999999_1.png", "x");
+  testing::WriteBytes(temp / "long" / "99999999999999999999_2.png", "x");
+  EXPECT_THROW(ReadViewsFolder(temp / "long"), Error);
+
   // A view missing from the grid is named.
   fs::remove(temp / "epinet" / "2067_02_03.png");
   try {
