@@ -35,6 +35,15 @@ bool IsTemporaryNameOf(const std::string& name, const fs::path& destination) {
   return tag.find_first_not_of("0123456789") == std::string::npos;
 }
 
+// "out/" names the folder "out": its temporary goes beside it ("out.tmp-N"), not inside it.
+fs::path WithoutTrailingSeparator(fs::path destination) {
+  if (!destination.has_filename() && destination.has_parent_path()) destination = destination.parent_path();
+  const std::string name = destination.filename().string();
+  if (name.empty() || name == "." || name == "..")
+    ThrowFileError(destination.string(), "an output needs a name of its own (not '.' or '..')");
+  return destination;
+}
+
 }  // namespace
 
 void RemoveStaleTemporaries(const fs::path& destination) {
@@ -48,7 +57,7 @@ void RemoveStaleTemporaries(const fs::path& destination) {
 }
 
 AtomicOutput::AtomicOutput(fs::path destination)
-    : destination_(std::move(destination)), temporary_(TemporaryNameFor(destination_)) {
+    : destination_(WithoutTrailingSeparator(std::move(destination))), temporary_(TemporaryNameFor(destination_)) {
   const fs::path parent = destination_.parent_path();
   std::error_code ec;
   if (!parent.empty() && !fs::exists(parent, ec)) {

@@ -249,5 +249,21 @@ TEST(HostileInput, OptionsValidatedBeforeAnyWork) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
+// An output folder given with a trailing slash is that folder (its temporary goes beside it, not inside); '.' is not
+// a name an output can be replaced under.
+TEST(HostileInput, OutputFolderWithATrailingSlashOrDot) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 16, 12);
+  WriteBundle(bundle, temp / "lf.h5");
+  const CommandResult slash = RunLfsp({"convert", (temp / "lf.h5").string(), (temp / "views").string() + "/"});
+  ASSERT_EQ(slash.exit_status, 0) << slash.err;
+  EXPECT_TRUE(fs::exists(temp / "views" / "input_Cam004.png"));
+  for (const auto& entry : fs::recursive_directory_iterator(temp.path()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  ExpectRefused(RunLfsp({"convert", (temp / "lf.h5").string(), (temp / ".").string()}), (temp / ".").string());
+  ExpectRefused(RunLfsp({"convert", (temp / "lf.h5").string(), (temp / "out.h5" / ".").string()}), "a name of its own");
+}
+
 }  // namespace
 }  // namespace lfsp
