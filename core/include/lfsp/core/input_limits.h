@@ -13,9 +13,10 @@ namespace lfsp {
 // declares 20000 x 20000 pixels is refused instead of costing gigabytes.
 //
 // The rule, by default: what the declaration would make us allocate must stay under kDefaultMemoryCapBytes and
-// under kSlackBytes + kMaxExpansion x the file's size. Genuine light fields stay far inside the ratio (photographic
-// views deflate 2-5x, an lfsp bundle of a simulated scene about 10x, while a float sample costs 4 bytes in memory);
-// a file that claims more is lying about its size or is all fill. `--max-memory GIB` replaces both with one cap and
+// under kSlackBytes + kMaxExpansion x the file's size. Genuine light fields stay far inside the ratio: float32 samples
+// in memory over bytes on disk measured 10x for antinous's PNG views, 5x for the real Illum field's, about 2.5x for
+// the pipeline's bundle of the two-horses Illum decode. A file that claims more is lying about its size or is all
+// fill. `--max-memory GIB` replaces both with one cap and
 // trusts the declarations below it (for genuine, extremely compressible data).
 inline constexpr std::uint64_t kSlackBytes = 64ull << 20;
 inline constexpr std::uint64_t kMaxExpansion = 512;
