@@ -220,7 +220,7 @@ LightField ReadMatLightField(const fs::path& path) {
   if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
   H5::Exception::dontPrint();
   LightField light_field = H5Fis_hdf5(name.c_str()) > 0 ? ReadV73(path) : ReadV5(path);
-  light_field.transfer = Transfer::kSrgb;  // LFToolbox's colour-corrected output and the datasets' are gamma-encoded
+  light_field.transfer = Transfer::kSrgb;  // the file does not say; assumed display-encoded, as PNG views are
   light_field.metadata = Metadata::object();
   return light_field;
 }
