@@ -13,6 +13,7 @@
 #include "command_registry.h"
 #include "input_loading.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/file_names.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
@@ -28,12 +29,6 @@ struct ConvertCommandOptions {
   std::string view_format = "png";
   double fps = 8.0;
 };
-
-std::string LowerExtension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
-}
 
 void RunConvert(const ConvertCommandOptions& options) {
   if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");

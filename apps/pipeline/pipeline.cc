@@ -214,8 +214,11 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
     WritePfm(estimate.confidence, work / "confidence.pfm");
     return estimate;
   });
-  summary["disparity_range"] = {
-      {"min", depth_result.range.min}, {"max", depth_result.range.max}, {"source", depth_result.range_source}};
+  // A range the pipeline took from the ground truth reaches depth as an option: say where it came from.
+  const bool from_truth = !options.depth.range && depth_result.range_source == "options";
+  summary["disparity_range"] = {{"min", depth_result.range.min},
+                                {"max", depth_result.range.max},
+                                {"source", from_truth ? "ground truth" : depth_result.range_source}};
   summary["depth_choices"] = {{"noise_sigma", depth_result.noise_sigma},
                               {"presmooth_sigma", depth_result.presmooth_sigma},
                               {"excluded_ring", depth_result.excluded_ring},

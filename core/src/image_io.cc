@@ -17,6 +17,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/file_names.h"
 #include "lfsp/core/input_limits.h"
 
 namespace lfsp {
@@ -93,9 +94,7 @@ cv::Mat QuantisedForStorage(const cv::Mat& image, OIIO::TypeDesc storage) {
 // would break the CLI's one-line error contract. Walking the chunks first (their lengths against the file, their
 // CRCs) catches both cleanly, at the cost of one extra read of the file.
 void CheckPngIsComplete(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension != ".png") return;
+  if (LowerExtension(path) != ".png") return;
   const std::string name = path.string();
   std::FILE* file = std::fopen(name.c_str(), "rb");
   if (file == nullptr) ThrowFileError(name, "cannot open");
@@ -247,8 +246,7 @@ void WriteAnimation(const std::vector<cv::Mat>& frames, const std::filesystem::p
   for (const cv::Mat& frame : frames)
     if (frame.type() != CV_8UC3 || frame.size() != frames.front().size())
       throw Error("WriteAnimation: frames must be 8-bit RGB of one size");
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = LowerExtension(path);
   AtomicOutput output(path);
   if (extension == ".gif") {
     auto writer = OIIO::ImageOutput::create("gif");

@@ -6,6 +6,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/file_names.h"
 #include "lfsp/core/mat_light_field.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/views_folder.h"
@@ -15,13 +16,6 @@ namespace lfsp {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string LowerExtension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 // Ground-truth or previously saved disparity stored beside the views.
 constexpr const char* kDisparityNames[] = {"disparity.pfm", "gt_disp_lowres.pfm"};

@@ -1,9 +1,11 @@
 #include "test_support.h"
 
 #include <fcntl.h>
+#include <pty.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
@@ -48,15 +50,11 @@ TempDir::~TempDir() {
 
 namespace {
 
-// Starts the built lfsp with the arguments, stdout and stderr to the given files; returns its pid.
-pid_t SpawnLfsp(const std::vector<std::string>& arguments, const std::string& out_path, const std::string& err_path) {
+// Starts the built lfsp with the arguments and the given redirections (which it destroys); returns its pid.
+// Spawned directly (no shell) so that wait4 reports the command's own peak memory, and a kill reaches lfsp.
+pid_t SpawnLfsp(const std::vector<std::string>& arguments, posix_spawn_file_actions_t& actions) {
   const char* binary = std::getenv("LFSP_BINARY");
   if (binary == nullptr) throw std::runtime_error("LFSP_BINARY is not set (run the test through ctest)");
-  // Spawned directly (no shell) so that wait4 reports the command's own peak memory, and a kill reaches lfsp.
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   std::vector<std::string> argv_storage = {binary};
   argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
@@ -67,6 +65,15 @@ pid_t SpawnLfsp(const std::vector<std::string>& arguments, const std::string& ou
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw std::runtime_error(std::string("cannot start ") + binary);
   return pid;
+}
+
+// Starts lfsp with stdout and stderr to the given files.
+pid_t SpawnLfsp(const std::vector<std::string>& arguments, const std::string& out_path, const std::string& err_path) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  return SpawnLfsp(arguments, actions);
 }
 
 int WaitFor(pid_t pid, struct rusage& usage) {
@@ -90,6 +97,32 @@ CommandResult RunLfsp(const std::vector<std::string>& arguments) {
   result.out = ReadBytes(out_path);
   result.err = ReadBytes(err_path);
   return result;
+}
+
+std::string RunLfspWithStderrOnTerminal(const std::vector<std::string>& arguments) {
+  int master = -1, slave = -1;
+  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) throw std::runtime_error("openpty failed");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, slave, 2);
+  posix_spawn_file_actions_addclose(&actions, master);
+  const pid_t pid = SpawnLfsp(arguments, actions);
+  close(slave);
+  std::string received;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(master, buffer, sizeof buffer);
+    if (n > 0) {
+      received.append(buffer, static_cast<std::size_t>(n));
+    } else if (!(n < 0 && errno == EINTR)) {
+      break;  // EIO once the command has closed the terminal
+    }
+  }
+  struct rusage usage {};
+  WaitFor(pid, usage);
+  close(master);
+  return received;
 }
 
 bool RunLfspKilledAfter(const std::vector<std::string>& arguments, double seconds) {

@@ -43,6 +43,9 @@ struct CommandResult {
 };
 CommandResult RunLfsp(const std::vector<std::string>& arguments);
 
+// Runs lfsp with stdout to /dev/null and stderr on a new pseudo-terminal; returns what the terminal received.
+std::string RunLfspWithStderrOnTerminal(const std::vector<std::string>& arguments);
+
 // Starts lfsp with the arguments and sends it SIGKILL after `seconds`; true when it was killed (false when it had
 // already finished).
 bool RunLfspKilledAfter(const std::vector<std::string>& arguments, double seconds);
