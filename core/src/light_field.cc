@@ -1,6 +1,5 @@
 #include "lfsp/core/light_field.h"
 
-#include <cmath>
 #include <opencv2/core.hpp>
 #include <unordered_map>
 
@@ -14,10 +13,6 @@ Transfer TransferFromString(const std::string& name) {
   if (name == "linear") return Transfer::kLinear;
   if (name == "srgb") return Transfer::kSrgb;
   throw Error("unknown transfer function '" + name + "' (expected 'linear' or 'srgb')");
-}
-
-double SrgbToLinear(double encoded) {
-  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
 std::string ToString(const LightFieldShape& shape) {

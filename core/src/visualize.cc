@@ -17,8 +17,7 @@ cv::Mat DisplayEncoded(const cv::Mat& image, Transfer transfer) {
   const std::size_t count = out.total() * static_cast<std::size_t>(out.channels());
   for (std::size_t i = 0; i < count; ++i) {
     float value = std::clamp(values[i], 0.0f, 1.0f);
-    if (transfer == Transfer::kLinear)
-      value = value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
+    if (transfer == Transfer::kLinear) value = LinearToSrgb(value);
     values[i] = value;
   }
   return out;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "lfsp/core/srgb.h"
+
 namespace lfsp::decode {
 namespace {
 
@@ -91,8 +93,7 @@ class SrgbTable {
   SrgbTable() {
     for (int k = 0; k <= kSize; ++k) {
       const double linear = static_cast<double>(k) / kSize;
-      table_[static_cast<std::size_t>(k)] =
-          static_cast<float>(linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
+      table_[static_cast<std::size_t>(k)] = static_cast<float>(LinearToSrgb(linear));
     }
   }
   float operator()(float linear) const {

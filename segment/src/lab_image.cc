@@ -5,14 +5,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/srgb.h"
 
 namespace lfsp::segment {
 namespace {
 
-float EncodeSrgb(float linear) {
-  const float v = std::clamp(linear, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float EncodeSrgb(float linear) { return LinearToSrgb(std::clamp(linear, 0.0f, 1.0f)); }
 
 }  // namespace
 

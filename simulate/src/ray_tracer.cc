@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/srgb.h"
 
 namespace lfsp::simulate {
 namespace {

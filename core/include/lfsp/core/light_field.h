@@ -8,6 +8,7 @@
 
 #include "lfsp/core/conventions.h"
 #include "lfsp/core/metadata.h"
+#include "lfsp/core/srgb.h"  // the transfer curve; users of Transfer reach SrgbToLinear through this header
 
 namespace lfsp {
 
@@ -16,9 +17,6 @@ enum class Transfer { kLinear, kSrgb };
 
 std::string ToString(Transfer transfer);
 Transfer TransferFromString(const std::string& name);  // throws lfsp::Error on an unknown name
-
-// The sRGB curve's inverse (IEC 61966-2-1): an encoded value in [0, 1] to linear light.
-double SrgbToLinear(double encoded);
 
 // The size of a 4D light field: nv x nu views of height x width pixels with `channels` samples each.
 struct LightFieldShape {
