@@ -91,37 +91,37 @@ bool RefineCentre(const cv::Mat& grey, double radius, int iterations, double max
   return true;
 }
 
-// Gauss-Newton on (rotation, sx, sy, ox, oy) over the inlier measurements.
-void FitLattice(const std::vector<Measurement>& measurements, Lattice& lattice) {
+// Gauss-Newton on (rotation, spacing_x, spacing_y, origin_x, origin_y) over the inlier measurements.
+void FitLattice(const std::vector<Measurement>& measurements, HexLattice& lattice) {
   for (int iteration = 0; iteration < 6; ++iteration) {
     Eigen::Matrix<double, 5, 5> normal = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
     const double c = std::cos(lattice.rotation), s = std::sin(lattice.rotation);
     for (const Measurement& m : measurements) {
       if (!m.inlier) continue;
-      const double a = m.i + 0.5 * Lattice::Shift(m.j), b = m.j;
+      const double a = m.i + 0.5 * lattice.Shift(m.j), b = m.j;
       double px = 0.0, py = 0.0;
-      lattice.Predict(m.i, m.j, px, py);
+      lattice.Centre(m.i, m.j, px, py);
       Eigen::Matrix<double, 5, 1> jx, jy;
-      jx << -s * lattice.sx * a - c * lattice.sy * b, c * a, -s * b, 1.0, 0.0;
-      jy << c * lattice.sx * a - s * lattice.sy * b, s * a, c * b, 0.0, 1.0;
+      jx << -s * lattice.spacing_x * a - c * lattice.spacing_y * b, c * a, -s * b, 1.0, 0.0;
+      jy << c * lattice.spacing_x * a - s * lattice.spacing_y * b, s * a, c * b, 0.0, 1.0;
       normal += jx * jx.transpose() + jy * jy.transpose();
       rhs += jx * (m.x - px) + jy * (m.y - py);
     }
     const Eigen::Matrix<double, 5, 1> delta = normal.ldlt().solve(rhs);
     if (!delta.allFinite()) throw Error("lenslet grid: the fit is singular (too few micro-images found)");
     lattice.rotation += delta(0);
-    lattice.sx += delta(1);
-    lattice.sy += delta(2);
-    lattice.ox += delta(3);
-    lattice.oy += delta(4);
+    lattice.spacing_x += delta(1);
+    lattice.spacing_y += delta(2);
+    lattice.origin_x += delta(3);
+    lattice.origin_y += delta(4);
     if (std::abs(delta(0)) < 1e-12 && delta.tail<4>().cwiseAbs().maxCoeff() < 1e-9) break;
   }
 }
 
-double Residual(const Lattice& lattice, const Measurement& m) {
+double Residual(const HexLattice& lattice, const Measurement& m) {
   double px = 0.0, py = 0.0;
-  lattice.Predict(m.i, m.j, px, py);
+  lattice.Centre(m.i, m.j, px, py);
   return std::hypot(m.x - px, m.y - py);
 }
 
@@ -135,8 +135,8 @@ double Median(std::vector<double> values) {
 // Measures every micro-image within `reach` lenses of the first one (all if reach < 0) at the lattice's predicted
 // positions, then fits the lattice robustly: dim micro-images are dropped, then centroids far from a first fit.
 std::vector<Measurement> MeasureAndFit(const cv::Mat& grey, const GridEstimateOptions& options, int reach,
-                                       Lattice& lattice) {
-  const double radius = options.window_radius * lattice.sx;
+                                       HexLattice& lattice) {
+  const double radius = options.window_radius * lattice.spacing_x;
   // Index bounds of lenses whose predicted centre is on the sensor.
   double a_min = std::numeric_limits<double>::max(), a_max = -a_min, b_min = a_min, b_max = -a_min;
   for (const auto& [x, y] :
@@ -164,8 +164,9 @@ std::vector<Measurement> MeasureAndFit(const cv::Mat& grey, const GridEstimateOp
       Measurement& m = measurements[static_cast<std::size_t>(j - j0) * columns + static_cast<std::size_t>(i - i0)];
       m.i = i;
       m.j = j;
-      lattice.Predict(i, j, m.x, m.y);
-      m.valid = RefineCentre(grey, radius, options.centroid_iterations, 0.35 * lattice.sx, m.x, m.y, m.brightness);
+      lattice.Centre(i, j, m.x, m.y);
+      m.valid =
+          RefineCentre(grey, radius, options.centroid_iterations, 0.35 * lattice.spacing_x, m.x, m.y, m.brightness);
     }
   }
   std::erase_if(measurements, [](const Measurement& m) { return !m.valid; });
@@ -217,14 +218,14 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
   const double margin = guess.spacing * 2.0;
   const double axis_x = std::clamp(guess.axis_x, margin, grey_white.cols - 1.0 - margin);
   const double axis_y = std::clamp(guess.axis_y, margin, grey_white.rows - 1.0 - margin);
-  Lattice lattice;
+  HexLattice lattice;
   lattice.rotation = guess.rotation;
-  lattice.sx = guess.spacing;
-  lattice.sy = guess.spacing * kHalfSqrt3 * guess.scale_y;
-  BrightestNear(grey_white, axis_x, axis_y, guess.spacing, lattice.ox, lattice.oy);
+  lattice.spacing_x = guess.spacing;
+  lattice.spacing_y = guess.spacing * kHalfSqrt3 * guess.scale_y;
+  BrightestNear(grey_white, axis_x, axis_y, guess.spacing, lattice.origin_x, lattice.origin_y);
   double brightness = 0.0;
-  if (!RefineCentre(grey_white, options.window_radius * guess.spacing, 20, 0.5 * guess.spacing, lattice.ox, lattice.oy,
-                    brightness))
+  if (!RefineCentre(grey_white, options.window_radius * guess.spacing, 20, 0.5 * guess.spacing, lattice.origin_x,
+                    lattice.origin_y, brightness))
     throw Error("lenslet grid: no micro-image found near the optical axis");
 
   // 2. Grow the fit from there: each stage's lattice predicts the next, wider stage well within a window.
@@ -239,7 +240,7 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
   for (const Measurement& m : measurements) {
     MeasuredCentre centre;
     double lx = 0.0, ly = 0.0;
-    lattice.Predict(m.i, m.j, lx, ly);
+    lattice.Centre(m.i, m.j, lx, ly);
     grid.Nearest(lx, ly, centre.i, centre.j);
     centre.x = m.x;
     centre.y = m.y;

@@ -370,8 +370,8 @@ PhasePlane FitPhasePlane(const std::vector<BlockPhases>& blocks, int m, Frequenc
 
 // Step 3: the hexagonal lattice of two reciprocal vectors and a lens position. The row direction is the shortest
 // lattice vector nearest the rotation hint (horizontal by default: both Lytro cameras have horizontal lens rows).
-Lattice LatticeFromReciprocal(const Frequency& k1, const Frequency& k2, double lens_x, double lens_y,
-                              double rotation_hint) {
+HexLattice LatticeFromReciprocal(const Frequency& k1, const Frequency& k2, double lens_x, double lens_y,
+                                 double rotation_hint) {
   // Direct basis a1, a2 with k_i . a_j = delta_ij: the columns of [k1; k2]^-1.
   Eigen::Matrix2d reciprocal;
   reciprocal << k1.x, k1.y, k2.x, k2.y;
@@ -391,13 +391,13 @@ Lattice LatticeFromReciprocal(const Frequency& k1, const Frequency& k2, double l
       along = candidate;
     }
   }
-  Lattice lattice;
+  HexLattice lattice;
   lattice.rotation = std::atan2(along.y(), along.x());
-  lattice.sx = along.norm();
+  lattice.spacing_x = along.norm();
   // Row spacing: the area of the lattice cell divided by the pitch along a row.
-  lattice.sy = std::abs(direct.determinant()) / lattice.sx;
-  lattice.ox = lens_x;
-  lattice.oy = lens_y;
+  lattice.spacing_y = std::abs(direct.determinant()) / lattice.spacing_x;
+  lattice.origin_x = lens_x;
+  lattice.origin_y = lens_y;
   return lattice;
 }
 
@@ -453,7 +453,7 @@ GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::opti
   const Eigen::Vector2d lens = reciprocal.inverse() * cycles;
 
   const double rotation_hint = guess ? guess->rotation : 0.0;
-  Lattice lattice = LatticeFromReciprocal(k[0], k[1], lens.x(), lens.y(), rotation_hint);
+  HexLattice lattice = LatticeFromReciprocal(k[0], k[1], lens.x(), lens.y(), rotation_hint);
   const double axis_x = guess && guess->axis_x > 0.0 ? guess->axis_x : 0.5 * (grey.cols - 1);
   const double axis_y = guess && guess->axis_y > 0.0 ? guess->axis_y : 0.5 * (grey.rows - 1);
   GridEstimate estimate;

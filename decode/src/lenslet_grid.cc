@@ -14,8 +14,6 @@
 namespace lfsp::decode {
 namespace {
 
-constexpr double kHalfSqrt3 = 0.86602540378443864676;
-
 double RequireNumber(const nlohmann::json& json, const char* key, const std::string& source) {
   if (!json.contains(key) || !json[key].is_number())
     throw Error(source + ": lenslet grid field '" + key + "' missing or not a number");
@@ -23,35 +21,6 @@ double RequireNumber(const nlohmann::json& json, const char* key, const std::str
 }
 
 }  // namespace
-
-void LensletGrid::Centre(double i, int j, double& x, double& y) const {
-  SensorPosition(i + 0.5 * Shift(j), j, 0.0, 0.0, x, y);
-}
-
-void LensletGrid::SensorPosition(double a, double b, double along, double across, double& x, double& y) const {
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const double p = a * spacing_x + along, q = b * spacing_y + across;
-  x = origin_x + c * p - s * q;
-  y = origin_y + s * p + c * q;
-}
-
-void LensletGrid::Nearest(double x, double y, int& i, int& j) const {
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const double dx = x - origin_x, dy = y - origin_y;
-  const double along = (c * dx + s * dy) / spacing_x;
-  const double across = (-s * dx + c * dy) / spacing_y;
-  const int j0 = static_cast<int>(std::floor(across));
-  double best = std::numeric_limits<double>::max();
-  for (int jj = j0; jj <= j0 + 1; ++jj) {
-    const int ii = static_cast<int>(std::lround(along - 0.5 * Shift(jj)));
-    const double ea = (along - ii - 0.5 * Shift(jj)) * spacing_x, eb = (across - jj) * spacing_y;
-    if (ea * ea + eb * eb < best) {
-      best = ea * ea + eb * eb;
-      i = ii;
-      j = jj;
-    }
-  }
-}
 
 cv::Mat LensLabels(const LensletGrid& grid) {
   cv::Mat labels(grid.sensor_height, grid.sensor_width, CV_8U);

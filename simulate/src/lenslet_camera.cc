@@ -151,39 +151,28 @@ std::vector<std::string> CameraPresetNames() { return {"f01", "illum", "mini-ill
 
 double LensletLattice::RowSpacing() const { return spacing * kHalfSqrt3 * scale_y; }
 
+HexLattice LensletLattice::Geometry() const {
+  HexLattice geometry;
+  geometry.spacing_x = spacing;
+  geometry.spacing_y = RowSpacing();
+  geometry.rotation = rotation;
+  geometry.origin_x = origin_x;
+  geometry.origin_y = origin_y;
+  geometry.row_shift = row_shift;
+  return geometry;
+}
+
 PixelPosition LensletLattice::Centre(int i, int j) const {
-  const double a = (static_cast<double>(i) + 0.5 * Shift(j)) * spacing;
-  const double b = static_cast<double>(j) * RowSpacing();
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  return {static_cast<float>(origin_x + c * a - s * b), static_cast<float>(origin_y + s * a + c * b)};
+  double x = 0.0, y = 0.0;
+  Geometry().Centre(i, j, x, y);
+  return {static_cast<float>(x), static_cast<float>(y)};
 }
 
 void LensletLattice::LocalOffset(double x, double y, int i, int j, double& along, double& across) const {
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const double dx = x - origin_x, dy = y - origin_y;
-  along = c * dx + s * dy - (static_cast<double>(i) + 0.5 * Shift(j)) * spacing;
-  across = -s * dx + c * dy - static_cast<double>(j) * RowSpacing();
+  Geometry().LocalOffset(x, y, i, j, along, across);
 }
 
-void LensletLattice::Nearest(double x, double y, int& i, int& j) const {
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const double dx = x - origin_x, dy = y - origin_y;
-  const double qa = c * dx + s * dy;
-  const double qb = -s * dx + c * dy;
-  const int j0 = static_cast<int>(std::floor(qb / RowSpacing()));
-  double best = 1e300;
-  for (int jj = j0; jj <= j0 + 1; ++jj) {
-    const int ii = static_cast<int>(std::lround(qa / spacing - 0.5 * Shift(jj)));
-    const double ea = qa - (ii + 0.5 * Shift(jj)) * spacing;
-    const double eb = qb - jj * RowSpacing();
-    const double dist = ea * ea + eb * eb;
-    if (dist < best) {
-      best = dist;
-      i = ii;
-      j = jj;
-    }
-  }
-}
+void LensletLattice::Nearest(double x, double y, int& i, int& j) const { Geometry().Nearest(x, y, i, j); }
 
 LensletLattice MakeLattice(const CameraModel& camera, const LensSetting& setting) {
   if (camera.sensor_width < 64 || camera.sensor_height < 64) throw Error("camera: sensor must be at least 64x64");
@@ -195,35 +184,22 @@ LensletLattice MakeLattice(const CameraModel& camera, const LensSetting& setting
   lattice.origin_x = 0.5 * (camera.sensor_width - 1) - camera.sensor_offset_x / camera.pixel_pitch;
   lattice.origin_y = 0.5 * (camera.sensor_height - 1) - camera.sensor_offset_y / camera.pixel_pitch;
   lattice.row_shift = camera.row_shift;
-  const double margin = 0.5 * lattice.spacing;
+  // Usable lenses: those whose whole micro-image is on the sensor.
+  HexLattice geometry = lattice.Geometry();
   auto inside = [&](int i, int j) {
-    const PixelPosition p = lattice.Centre(i, j);
-    return p.x >= margin && p.y >= margin && p.x <= camera.sensor_width - 1 - margin &&
-           p.y <= camera.sensor_height - 1 - margin;
+    double x = 0.0, y = 0.0;
+    geometry.Centre(i, j, x, y);
+    return geometry.MicroImageOnSensor(x, y, camera.sensor_width, camera.sensor_height);
   };
-  // Columns: the lenses of the axis row that are inside; rows: those whose whole column range is inside.
   const int reach = static_cast<int>(std::max(camera.sensor_width, camera.sensor_height) / lattice.spacing) + 4;
-  // (both row parities, since shifted rows reach half a pitch further right).
-  auto both_rows = [&](int i) { return inside(i, 0) && inside(i, 1); };
-  int i0 = 0, i1 = 0;
-  while (both_rows(i0 - 1) && i0 > -reach) --i0;
-  while (both_rows(i1 + 1) && i1 < reach) ++i1;
-  auto row_inside = [&](int j) { return inside(i0, j) && inside(i1, j); };
-  int j0 = 0, j1 = 0;
-  while (row_inside(j0 - 1) && j0 > -reach) --j0;
-  while (row_inside(j1 + 1) && j1 < reach) ++j1;
+  const LensRange range = UsableLensRange(inside, reach, 0);
   // Re-index so that lens (0, 0) is the top-left usable lens.
-  const PixelPosition first = lattice.Centre(i0, j0);
-  lattice.row_shift = ((camera.row_shift + j0) % 2 + 2) % 2;
-  lattice.origin_x = first.x;
-  lattice.origin_y = first.y;
-  // Centre() of (0, 0) now includes a half-pitch shift if row 0 is shifted: compensate along the row.
-  if (lattice.Shift(0) == 1) {
-    lattice.origin_x -= 0.5 * lattice.spacing * std::cos(lattice.rotation);
-    lattice.origin_y -= 0.5 * lattice.spacing * std::sin(lattice.rotation);
-  }
-  lattice.columns = i1 - i0 + 1;
-  lattice.rows = j1 - j0 + 1;
+  geometry.Reindex(range.i0, range.j0);
+  lattice.row_shift = geometry.row_shift;
+  lattice.origin_x = geometry.origin_x;
+  lattice.origin_y = geometry.origin_y;
+  lattice.columns = range.Columns();
+  lattice.rows = range.Rows();
   return lattice;
 }
 

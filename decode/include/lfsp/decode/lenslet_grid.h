@@ -7,24 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "lfsp/core/hex_lattice.h"
 #include "lfsp/decode/lytro_metadata.h"
 #include "lfsp/decode/raw_packing.h"
 
 namespace lfsp::decode {
 
-// The hexagonal micro-lens lattice on the sensor, in pixels (pixel centres at integer coordinates, y down):
-//   centre(i, j) = origin + R(rotation) * ((i + shift(j) / 2) * spacing_x, j * spacing_y),
-//   shift(j) = (j + row_shift) mod 2, R(a) = [cos a, -sin a; sin a, cos a].
+// The micro-lens lattice of a camera on its sensor: the hexagonal geometry (lfsp::HexLattice, shared with the
+// simulator's camera model, so a fitted grid compares with the truth term by term) and the usable lenses.
 // Lens (0, 0) is the top-left lens of the usable grid (every lens 0 <= i < columns, 0 <= j < rows has its whole
-// micro-image, radius spacing_x / 2, on the sensor). This is the simulator's LensletLattice parametrisation, so a
-// fitted grid compares with the truth term by term.
-struct LensletGrid {
-  double spacing_x = 0.0;  // px between neighbouring centres along a lens row
-  double spacing_y = 0.0;  // px between lens rows (about spacing_x * sqrt(3)/2)
-  double rotation = 0.0;   // rad: lens rows run along (cos, sin) in image coordinates
-  double origin_x = 0.0;   // px
-  double origin_y = 0.0;
-  int row_shift = 0;  // rows with (j + row_shift) odd are shifted by half a pitch to the right
+// micro-image, radius spacing_x / 2, on the sensor).
+struct LensletGrid : HexLattice {
   int columns = 0;
   int rows = 0;
   int sensor_width = 0;
@@ -38,15 +31,6 @@ struct LensletGrid {
   int lenses_used = 0;        // white image: inliers of the final fit
   int blocks = 0;             // capture: blocks of about 12 x 12 lenses whose lattice phase was measured
   int blocks_used = 0;        // capture: inlier blocks of the final fit
-
-  int Shift(int j) const { return ((j + row_shift) % 2 + 2) % 2; }
-  void Centre(double i, int j, double& x, double& y) const;
-  // Sensor position of lattice-frame coordinates (a along the row in lens pitches, b across in rows) plus an offset
-  // (along, across) in pixels in the lattice frame.
-  void SensorPosition(double a, double b, double along, double across, double& x, double& y) const;
-
-  // The lens (i, j) whose centre is nearest to sensor point (x, y); indices may fall outside the usable grid.
-  void Nearest(double x, double y, int& i, int& j) const;
 
   nlohmann::json ToJson() const;
   // lfsp::Error naming `source` if a field is missing or out of range.

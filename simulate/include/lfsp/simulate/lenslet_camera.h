@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lfsp/core/conventions.h"
+#include "lfsp/core/hex_lattice.h"
 
 namespace lfsp::simulate {
 
@@ -82,7 +83,8 @@ std::vector<std::string> CameraPresetNames();
 //   centre(i, j) = origin + R(rotation) * ((i + shift(j)/2) * spacing, j * spacing * sqrt(3)/2 * scale_y),
 //   shift(j) = (j + row_shift) & 1.
 // Lens (0, 0) is the top-left lens of the usable grid; `columns` x `rows` lenses all have their whole micro-image
-// (radius spacing/2) inside the sensor.
+// (radius spacing/2) inside the sensor. The geometry is lfsp::HexLattice's (Geometry()), the one the decoder fits;
+// this form keeps the camera's own terms (a pitch and a vertical scale).
 struct LensletLattice {
   double spacing = 0;
   double scale_y = 1;
@@ -94,7 +96,8 @@ struct LensletLattice {
   int rows = 0;
 
   double RowSpacing() const;
-  int Shift(int j) const { return ((j + row_shift) % 2 + 2) % 2; }
+  HexLattice Geometry() const;
+  int Shift(int j) const { return HexLattice{.row_shift = row_shift}.Shift(j); }
   PixelPosition Centre(int i, int j) const;
   // Lattice-frame offset (along the row, across the rows) of a sensor point from lens (i, j)'s centre.
   void LocalOffset(double x, double y, int i, int j, double& along, double& across) const;
