@@ -1,11 +1,12 @@
 #include "lfsp/depth/plane_fit.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 #include <vector>
+
+#include "lfsp/core/plane_fit.h"
 
 namespace lfsp::depth {
 
@@ -36,23 +37,18 @@ struct Plane {
   double At(int x, int y) const { return a * x + b * y + c; }
 };
 
-// Weighted least squares with Huber-style reweighting: a few outliers (wrong matches) do not tilt the plane.
+// Weighted least squares (the shared fit of lfsp/core/plane_fit.h) with Huber-style reweighting: a few outliers (wrong
+// matches) do not tilt the plane.
 bool FitPlane(const std::vector<cv::Point>& points, const DisparityMap& disparity, float inlier_distance,
               Plane& plane) {
   if (points.size() < 3) return false;
   std::vector<double> weights(points.size(), 1.0);
   for (int iteration = 0; iteration < 4; ++iteration) {
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Eigen::Vector3d row(points[i].x, points[i].y, 1.0);
-      normal += weights[i] * row * row.transpose();
-      rhs += weights[i] * row * static_cast<double>(disparity.at(points[i].y, points[i].x));
-    }
-    const Eigen::LDLT<Eigen::Matrix3d> solver(normal);
-    if (solver.info() != Eigen::Success) return false;
-    const Eigen::Vector3d solution = solver.solve(rhs);
-    if (!solution.allFinite()) return false;
+    PlaneSums sums;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      sums.Add(points[i].x, points[i].y, disparity.at(points[i].y, points[i].x), weights[i]);
+    cv::Vec3d solution;
+    if (!SolvePlane(sums.m, sums.r, solution)) return false;
     plane = {solution[0], solution[1], solution[2]};
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double residual = std::abs(disparity.at(points[i].y, points[i].x) - plane.At(points[i].x, points[i].y));

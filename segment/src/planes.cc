@@ -6,44 +6,20 @@
 #include <opencv2/core.hpp>
 #include <unordered_map>
 
+#include "lfsp/core/plane_fit.h"
+
 namespace lfsp::segment {
 namespace {
 
-// Sums over points (x, y) [with disparity d] for least-squares plane fitting: M = sum (x y 1)^T (x y 1),
-// r = sum d (x y 1)^T.
-struct Moments {
-  cv::Matx33d m = cv::Matx33d::zeros();
-  cv::Vec3d r = cv::Vec3d::all(0.0);
-  double n = 0.0;
-
-  void Add(double x, double y) {
-    const cv::Vec3d p(x, y, 1.0);
-    m += p * p.t();
-    n += 1.0;
-  }
-  void Add(double x, double y, double d) {
-    Add(x, y);
-    r += cv::Vec3d(x, y, 1.0) * d;
-  }
-};
+// The sums of a plane fit (lfsp/core/plane_fit.h): over a label's pixels, a boundary's points, or both.
+using Moments = PlaneSums;
 
 cv::Vec3d AsVector(const Plane& plane) { return {plane.a, plane.b, plane.c}; }
 
-// Solves m p = r in coordinates centred on the support's mean (absolute pixel coordinates make the system badly
-// conditioned); false if the support is (near) degenerate, e.g. collinear, which leaves a slope undetermined.
 bool SolvePlane(const cv::Matx33d& m, const cv::Vec3d& r, Plane& plane) {
-  const double n = m(2, 2);
-  if (n <= 0.0) return false;
-  const double mx = m(0, 2) / n, my = m(1, 2) / n;
-  const cv::Matx33d t(1, 0, -mx, 0, 1, -my, 0, 0, 1);
-  const cv::Matx33d centred = t * m * t.t();
-  const cv::Vec3d centred_r = t * r;
-  const double sxx = centred(0, 0), syy = centred(1, 1), sxy = centred(0, 1);
-  if (sxx + syy <= 0.0 || sxx * syy - sxy * sxy < 1e-6 * (sxx + syy) * (sxx + syy)) return false;
-  cv::Vec3d p;
-  if (!cv::solve(centred, centred_r, p, cv::DECOMP_CHOLESKY)) return false;
-  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) return false;
-  plane = {p[0], p[1], p[2] - p[0] * mx - p[1] * my};
+  cv::Vec3d abc;
+  if (!lfsp::SolvePlane(m, r, abc)) return false;
+  plane = {abc[0], abc[1], abc[2]};
   return true;
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <opencv2/core/matx.hpp>
+
+namespace lfsp {
+
+// Sums for the least-squares fit of a plane d = a x + b y + c to samples (x, y, d), each with a weight w:
+// m = sum w (x y 1)^T (x y 1), r = sum w d (x y 1)^T, n = how many samples were added. Depth's slanted-plane
+// refinement and segmentation's superpixel planes both fit through these (one formulation, one solver).
+struct PlaneSums {
+  cv::Matx33d m = cv::Matx33d::zeros();
+  cv::Vec3d r = cv::Vec3d::all(0.0);
+  double n = 0.0;
+
+  // A point without a disparity: only its geometry, for terms that compare planes over a point set.
+  void Add(double x, double y);
+  void Add(double x, double y, double d);
+  void Add(double x, double y, double d, double weight);
+};
+
+// Solves m (a, b, c)^T = r in coordinates centred on the support's (weighted) mean, since absolute pixel
+// coordinates make the system badly conditioned. False, leaving `abc` unchanged, if the support is (near)
+// degenerate, e.g. collinear, which leaves a slope undetermined, or if the solution is not finite.
+bool SolvePlane(const cv::Matx33d& m, const cv::Vec3d& r, cv::Vec3d& abc);
+
+}  // namespace lfsp
