@@ -20,6 +20,17 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The ideal renderer's settings for an --ideal-only run, the same for the scene and for every calibration pose.
+RenderOptions IdealRenderOptions(const SimulateOptions& options) {
+  RenderOptions render;
+  render.nu = render.nv = options.views;
+  render.width = options.width;
+  render.height = options.height;
+  render.supersampling = options.supersampling;
+  render.per_view_disparity = false;
+  return render;
+}
+
 // whites/MOD_####.RAW + .TXT for every lens setting of the camera; returns their description.
 nlohmann::json WriteWhiteImages(const CameraModel& camera, std::uint64_t seed, const std::filesystem::path& out_dir,
                                 SimulateResult& result) {
@@ -59,13 +70,8 @@ void WriteCalibrationSet(const SimulateOptions& options, const std::filesystem::
     const Scene scene = CalibrationScene(boards[k], CalibrationRig());
     nlohmann::json truth;
     if (options.ideal_only) {
-      RenderOptions render;
-      render.nu = render.nv = options.views;
-      render.width = options.width;
-      render.height = options.height;
-      render.supersampling = options.supersampling;
-      render.per_view_disparity = false;
-      WriteBundle(ToBundle(RenderLightField(scene, render), scene), out_dir / folder / "ideal.h5", bundle_options);
+      WriteBundle(ToBundle(RenderLightField(scene, IdealRenderOptions(options)), scene), out_dir / folder / "ideal.h5",
+                  bundle_options);
       result.files.push_back(folder / "ideal.h5");
       truth = CalibrationGroundTruth(scene, options.width, options.height);
     } else {
@@ -110,14 +116,8 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     if (!options.ideal_only && options.white_images)
       summary["white_images"] = WriteWhiteImages(CameraPreset(options.camera), options.seed, out_dir, result);
   } else if (options.ideal_only) {
-    RenderOptions render;
-    render.nu = render.nv = options.views;
-    render.width = options.width;
-    render.height = options.height;
-    render.supersampling = options.supersampling;
-    render.per_view_disparity = false;
     const auto t0 = std::chrono::steady_clock::now();
-    const RenderedLightField rendered = RenderLightField(scene, render);
+    const RenderedLightField rendered = RenderLightField(scene, IdealRenderOptions(options));
     summary["timings_s"]["render_ideal"] = SecondsSince(t0);
     WriteBundle(ToBundle(rendered, scene), out_dir / "ideal.h5", bundle_options);
     result.files.push_back("ideal.h5");
