@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "json_path.h"
 #include "json_text.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/json_fields.h"
 #include "lfsp/decode/lfp_container.h"
 
 namespace lfsp::decode {

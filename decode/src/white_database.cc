@@ -5,8 +5,8 @@
 #include <map>
 #include <sstream>
 
-#include "json_path.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/json_fields.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/decode/lytro_capture.h"
 

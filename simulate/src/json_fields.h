@@ -6,14 +6,15 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/json_fields.h"
 
-// Small checked accessors for the scene JSON: every failure names the field path (`where.key`).
+// Small checked accessors for the scene JSON: every failure names the field path (`where.key`). Typed lookups are
+// core's (lfsp/core/json_fields.h); what is added here is the scene's own checks (objects, ranges, points, colours).
 namespace lfsp::simulate {
 
 inline std::string RequireString(const nlohmann::json& json, const char* key, const std::string& where) {
   if (!json.is_object()) throw Error(where + ": expected an object");
-  if (!json.contains(key) || !json.at(key).is_string()) throw Error(where + "." + key + ": expected a string");
-  return json.at(key).get<std::string>();
+  return lfsp::RequireString(json, key, JsonSource::Object(where));
 }
 
 // Every number in a scene is a coordinate, size, disparity or angle: anything beyond +-1e4 (or not finite) is a

@@ -1,14 +1,13 @@
-#include "json_path.h"
+#include "lfsp/core/json_fields.h"
 
 #include <charconv>
 
 #include "lfsp/core/error.h"
 
-namespace lfsp::decode {
+namespace lfsp {
 namespace {
 
-// Steps into `node` by one path component "name" or "name[3]"; nullptr if
-// absent.
+// Steps into `node` by one path component "name" or "name[3]"; nullptr if absent.
 const nlohmann::json* Step(const nlohmann::json* node, std::string_view component) {
   std::string_view name = component;
   std::optional<std::size_t> index;
@@ -34,11 +33,23 @@ const nlohmann::json* Step(const nlohmann::json* node, std::string_view componen
   return node;
 }
 
-[[noreturn]] void WrongType(const std::string& source, std::string_view path, const char* expected) {
-  throw Error(source + ": metadata field " + std::string(path) + " is not " + expected);
+}  // namespace
+
+JsonSource JsonSource::Object(std::string where) {
+  JsonSource source(std::move(where));
+  source.object_ = true;
+  return source;
 }
 
-}  // namespace
+void JsonSource::WrongType(std::string_view path, const char* expected) const {
+  if (object_) throw Error(name_ + "." + std::string(path) + ": expected " + expected);
+  throw Error(name_ + ": metadata field " + std::string(path) + " is not " + expected);
+}
+
+void JsonSource::Missing(std::string_view path) const {
+  if (object_) throw Error(name_ + "." + std::string(path) + ": missing");
+  throw Error(name_ + ": metadata field " + std::string(path) + " is missing");
+}
 
 const nlohmann::json* FindPath(const nlohmann::json& root, std::string_view path) {
   const nlohmann::json* node = &root;
@@ -50,41 +61,40 @@ const nlohmann::json* FindPath(const nlohmann::json& root, std::string_view path
   return node;
 }
 
-std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
   const nlohmann::json* value = FindPath(root, path);
   if (value == nullptr || value->is_null()) return std::nullopt;
-  if (!value->is_number()) WrongType(source, path, "a number");
+  if (!value->is_number()) source.WrongType(path, "a number");
   return value->get<double>();
 }
 
-std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
   const nlohmann::json* value = FindPath(root, path);
   if (value == nullptr || value->is_null()) return std::nullopt;
-  if (!value->is_string()) WrongType(source, path, "a string");
+  if (!value->is_string()) source.WrongType(path, "a string");
   return value->get<std::string>();
 }
 
-std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, const std::string& source) {
+std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
   const nlohmann::json* value = FindPath(root, path);
   if (value == nullptr || value->is_null()) return std::nullopt;
-  // Some Lytro files write flags as strings ("false"); accept both.
   if (value->is_boolean()) return value->get<bool>();
   if (value->is_string() && (*value == "true" || *value == "false")) return *value == "true";
-  WrongType(source, path, "a boolean");
+  source.WrongType(path, "a boolean");
 }
 
-double RequireNumber(const nlohmann::json& root, std::string_view path, const std::string& source,
+double RequireNumber(const nlohmann::json& root, std::string_view path, const JsonSource& source,
                      std::string_view prefix) {
   const std::optional<double> value = NumberAt(root, path, source);
-  if (!value) throw Error(source + ": metadata field " + std::string(prefix) + std::string(path) + " is missing");
+  if (!value) source.Missing(std::string(prefix) + std::string(path));
   return *value;
 }
 
-std::string RequireString(const nlohmann::json& root, std::string_view path, const std::string& source,
+std::string RequireString(const nlohmann::json& root, std::string_view path, const JsonSource& source,
                           std::string_view prefix) {
-  const std::optional<std::string> value = StringAt(root, path, source);
-  if (!value) throw Error(source + ": metadata field " + std::string(prefix) + std::string(path) + " is missing");
-  return *value;
+  std::optional<std::string> value = StringAt(root, path, source);
+  if (!value) source.Missing(std::string(prefix) + std::string(path));
+  return *std::move(value);
 }
 
-}  // namespace lfsp::decode
+}  // namespace lfsp
