@@ -13,6 +13,7 @@
 namespace lfsp::decode {
 namespace {
 
+using lfsp::testing::ErrorOf;
 using lfsp::testing::TempDir;
 
 struct RealFile {
@@ -47,17 +48,6 @@ LfpContainer SyntheticContainer() {
   nlohmann::json toc = {{"frames", {{{"frame", {{"imageRef", raw}, {"metadataRef", meta}}}}}}, {"extra", {empty, one}}};
   c.AddJson(toc, SectionKind::kMetadata);
   return c;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("NOT lfsp::Error: ") + e.what();
-  }
-  return "no error";
 }
 
 std::uint32_t BigEndianAt(const std::vector<std::uint8_t>& b, std::size_t at) {

@@ -14,23 +14,11 @@
 namespace lfsp::decode {
 namespace {
 
+using lfsp::testing::ErrorOf;
+using lfsp::testing::LoadJson;
 using lfsp::testing::ReadBytes;
 using lfsp::testing::TempDir;
 using lfsp::testing::WriteBytes;
-
-nlohmann::json LoadJson(const std::filesystem::path& path) {
-  const std::string text = ReadBytes(path);
-  return nlohmann::json::parse(text.substr(0, text.rfind('}') + 1));
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 std::vector<std::uint16_t> RandomPixels(std::size_t n, int max_value, std::uint32_t seed) {
   std::mt19937 rng(seed);

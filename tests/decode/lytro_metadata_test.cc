@@ -13,25 +13,13 @@
 namespace lfsp::decode {
 namespace {
 
+using lfsp::testing::ErrorOf;
+using lfsp::testing::LoadJson;
 using lfsp::testing::ReadBytes;
 using lfsp::testing::TempDir;
 using lfsp::testing::WriteBytes;
 
 constexpr double kExact = 1e-12;  // values are copied, not computed
-
-nlohmann::json LoadJson(const std::filesystem::path& path) {
-  const std::string text = ReadBytes(path);
-  return nlohmann::json::parse(text.substr(0, text.rfind('}') + 1));
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 TEST(LytroMetadataReal, F01FrameMetadata) {
   LFSP_REQUIRE_SHARED_DATA(data);

@@ -17,6 +17,7 @@ namespace lfsp::decode {
 namespace {
 
 namespace fs = std::filesystem;
+using lfsp::testing::ErrorOf;
 using lfsp::testing::ReadBytes;
 using lfsp::testing::TempDir;
 using lfsp::testing::WriteBytes;
@@ -59,15 +60,6 @@ void WritePair(const fs::path& dir, const fs::path& real_txt, const White& w) {
 LytroMetadata Capture(const std::string& serial, int zoom, int focus) {
   nlohmann::json md = {{"devices", {{"lens", {{"zoomStep", zoom}, {"focusStep", focus}}}}}};
   return ParseFrameMetadata(md, {{"camera", {{"serialNumber", serial}}}}, "IMG_0001.LFR");
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 class WhiteDatabaseTest : public ::testing::Test {

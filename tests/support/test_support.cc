@@ -19,6 +19,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lfsp/core/error.h"
+
 extern char** environ;
 
 namespace lfsp::testing {
@@ -145,6 +147,22 @@ std::string ReadBytes(const fs::path& path) {
   std::ostringstream content;
   content << file.rdbuf();
   return content.str();
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("NOT lfsp::Error: ") + e.what();
+  }
+  return "no error";
+}
+
+nlohmann::json LoadJson(const fs::path& path) {
+  const std::string text = ReadBytes(path);
+  return nlohmann::json::parse(text.substr(0, text.rfind('}') + 1));
 }
 
 }  // namespace lfsp::testing

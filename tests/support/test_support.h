@@ -1,6 +1,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,5 +54,12 @@ bool RunLfspKilledAfter(const std::vector<std::string>& arguments, double second
 
 void WriteBytes(const std::filesystem::path& path, const std::string& bytes);
 std::string ReadBytes(const std::filesystem::path& path);
+
+// The message of the lfsp::Error that `f` throws, "NOT lfsp::Error: <what>" for any other exception (so a test of
+// error messages fails readably instead of aborting), or "no error".
+std::string ErrorOf(const std::function<void()>& f);
+
+// A JSON file, up to its last '}': the reference metadata files end in padding that is not JSON.
+nlohmann::json LoadJson(const std::filesystem::path& path);
 
 }  // namespace lfsp::testing
