@@ -2,20 +2,16 @@
 
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <optional>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/white_database.h"
 
 namespace lfsp::decode {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The white image a decode uses and where it came from.
 struct WhiteSource {
@@ -62,7 +58,8 @@ WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, con
 }  // namespace
 
 CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path, const CaptureDecodeOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch total;
+  Stopwatch step;
   const RawInput input = OpenRawInput(capture_path, options.plain);
   if (input.white_image)
     throw Error(capture_path.string() +
@@ -71,11 +68,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     throw Error(capture_path.string() +
                 ": a plain raw image needs --camera f01|illum to decode (sensor layout, optics and colour)");
   const LytroMetadata& metadata = input.metadata;
-  const double read_seconds = SecondsSince(start);
+  const double read_seconds = step.Lap();
   Progress progress("decode", 3);  // white image, grid, decode; drawn only on a terminal
 
   // The white image: from the database, or (asked for, plain images, none found) estimated from the capture.
-  auto step = std::chrono::steady_clock::now();
   const std::filesystem::path white_dir =
       options.white_images.empty() ? std::filesystem::absolute(capture_path).parent_path() : options.white_images;
   if (!options.white_images.empty() && !std::filesystem::is_directory(white_dir))
@@ -89,12 +85,11 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     if (!white)
       spdlog::warn("{}: {}; estimating the white image from the capture itself", capture_path.string(), estimate_why);
   }
-  const double white_seconds = SecondsSince(step);
+  const double white_seconds = step.Lap();
   progress.Tick();
 
   // The lenslet grid: fitted on the white image (starting from its micro-lens description, or the capture's), or
   // found in the capture itself.
-  step = std::chrono::steady_clock::now();
   GridEstimate estimate;
   std::optional<PreparedWhite> prepared;
   if (white) {
@@ -111,7 +106,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   }
-  const double grid_seconds = SecondsSince(step);
+  const double grid_seconds = step.Lap();
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px ({})",
@@ -144,7 +139,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
                      {{"read", read_seconds},
                       {"white_image", white_seconds},
                       {"white_preparation_and_grid", grid_seconds},
-                      {"total", SecondsSince(start)}}}};
+                      {"total", total.Seconds()}}}};
   return result;
 }
 

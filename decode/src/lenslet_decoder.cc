@@ -3,44 +3,28 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <future>
 #include <opencv2/core.hpp>
 
 #include "bayer_preprocess.h"
 #include "lenslet_slicing.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lattice_pattern.h"
 
 namespace lfsp::decode {
 namespace {
 
-// CPU time of the whole process (all threads): with the wall time, it shows how well a step uses the cores.
-double ProcessCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
+// Fills the report's wall and CPU seconds of each step (the CPU time shows how well a step uses the cores).
 class StepTimer {
  public:
-  explicit StepTimer(DecodeReport& report)
-      : report_(report), start_(std::chrono::steady_clock::now()), cpu_start_(ProcessCpuSeconds()) {}
-  void Lap(const std::string& step) {
-    const auto now = std::chrono::steady_clock::now();
-    const double cpu = ProcessCpuSeconds();
-    report_.seconds[step] = std::chrono::duration<double>(now - start_).count();
-    report_.cpu_seconds[step] = cpu - cpu_start_;
-    start_ = now;
-    cpu_start_ = cpu;
-  }
+  explicit StepTimer(DecodeReport& report) : report_(report) {}
+  void Lap(const std::string& step) { report_.seconds[step] = stopwatch_.Lap(&report_.cpu_seconds[step]); }
 
  private:
   DecodeReport& report_;
-  std::chrono::steady_clock::time_point start_;
-  double cpu_start_;
+  Stopwatch stopwatch_;
 };
 
 void CheckSize(const RawImage& image, int width, int height, const std::string& what) {
@@ -159,9 +143,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                          const LytroMetadata& white_metadata, const LensletGrid& grid, const DecodeOptions& options,
                          DecodeReport* report) {
   CheckSize(white, grid.sensor_width, grid.sensor_height, white_metadata.source);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const PreparedWhite prepared = PrepareWhite(white, white_metadata, options.colour, options.min_white);
-  const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double prepare_seconds = stopwatch.Seconds();
   LightField light_field = DecodeLenslet(capture, capture_metadata, prepared, grid, options, report);
   if (report) report->seconds["prepare_white"] = prepare_seconds;
   return light_field;

@@ -3,11 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <string>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/depth/detail_weight.h"
 #include "lfsp/depth/disparity_range.h"
 #include "lfsp/depth/presmooth.h"
@@ -18,20 +18,16 @@ namespace {
 // Times each step into `timings` and advances the progress display (drawn only on a terminal) by one step.
 class StepTimer {
  public:
-  StepTimer(nlohmann::json& timings, std::size_t steps)
-      : timings_(timings), progress_("depth", steps), start_(Clock::now()) {}
+  StepTimer(nlohmann::json& timings, std::size_t steps) : timings_(timings), progress_("depth", steps) {}
   void Lap(const char* step) {
-    const Clock::time_point now = Clock::now();
-    timings_[step] = std::chrono::duration<double>(now - start_).count();
-    start_ = now;
+    timings_[step] = stopwatch_.Lap();
     progress_.Tick();
   }
 
  private:
-  using Clock = std::chrono::steady_clock;
   nlohmann::json& timings_;
   Progress progress_;
-  Clock::time_point start_;
+  Stopwatch stopwatch_;
 };
 
 // How many steps EstimateDepth times (as many Lap calls as it makes).

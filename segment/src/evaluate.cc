@@ -1,11 +1,11 @@
 #include "lfsp/segment/evaluate.h"
 
 #include <algorithm>
-#include <chrono>
 #include <optional>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
 #include "lfsp/segment/refocus.h"
@@ -13,17 +13,13 @@
 namespace lfsp::segment {
 namespace {
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Runs one baseline, times it and scores it like the segmentation under test.
 template <typename Run>
 nlohmann::json ScoreBaseline(Run run, const EvaluationInputs& inputs, const std::vector<DisparityMap>* views,
                              int tolerance, bool per_view) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const Labels labels = run();
-  const double seconds = SecondsSince(start);
+  const double seconds = stopwatch.Seconds();
   nlohmann::json metrics = per_view
                                ? ScorePerViewLabels(labels, inputs.gt_labels, inputs.gt_disparity, views, tolerance)
                                : ScoreLabels(labels, inputs.gt_labels, inputs.gt_disparity, views, tolerance);

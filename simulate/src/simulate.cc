@@ -1,8 +1,7 @@
 #include "lfsp/simulate/simulate.h"
 
-#include <chrono>
-
 #include "lfsp/core/error.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/simulate/calibration_set.h"
 #include "lfsp/simulate/lytro_writer.h"
@@ -14,10 +13,6 @@ namespace {
 void WriteText(const std::string& text, const std::filesystem::path& path) {
   decode::WriteFileBytesAtomic(
       std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), path);
-}
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The ideal renderer's settings for an --ideal-only run, the same for the scene and for every calibration pose.
@@ -96,7 +91,7 @@ void WriteCalibrationSet(const SimulateOptions& options, const std::filesystem::
 }  // namespace
 
 SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::path& out_dir) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch total;
   const Scene scene = SceneFromSpec(options.scene);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
@@ -116,9 +111,9 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     if (!options.ideal_only && options.white_images)
       summary["white_images"] = WriteWhiteImages(CameraPreset(options.camera), options.seed, out_dir, result);
   } else if (options.ideal_only) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     const RenderedLightField rendered = RenderLightField(scene, IdealRenderOptions(options));
-    summary["timings_s"]["render_ideal"] = SecondsSince(t0);
+    summary["timings_s"]["render_ideal"] = stopwatch.Seconds();
     WriteBundle(ToBundle(rendered, scene), out_dir / "ideal.h5", bundle_options);
     result.files.push_back("ideal.h5");
     summary["ideal"] = {{"views", options.views}, {"width", options.width}, {"height", options.height}};
@@ -127,17 +122,17 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     CaptureOptions capture = options.capture;
     capture.seed = options.seed;
     summary["camera"] = camera.name;
-    auto t0 = std::chrono::steady_clock::now();
+    Stopwatch step;
     const RawCapture raw = RenderRawCapture(scene, camera, capture);
-    summary["timings_s"]["render_raw"] = SecondsSince(t0);
+    summary["timings_s"]["render_raw"] = step.Lap();
     const std::string capture_name = CaptureFileName(camera);
     decode::WriteLfpContainer(BuildCaptureContainer(camera, raw), out_dir / capture_name);
     result.files.push_back(capture_name);
 
     if (options.white_images) {
-      t0 = std::chrono::steady_clock::now();
+      step.Lap();
       summary["white_images"] = WriteWhiteImages(camera, options.seed, out_dir, result);
-      summary["timings_s"]["render_whites"] = SecondsSince(t0);
+      summary["timings_s"]["render_whites"] = step.Lap();
     }
 
     std::filesystem::create_directories(out_dir / "ground_truth", ec);
@@ -146,9 +141,9 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     if (summary.contains("white_images")) geometry["white_images"] = summary["white_images"];
     WriteText(geometry.dump(2), out_dir / "ground_truth" / "lenslet_geometry.json");
     result.files.push_back("ground_truth/lenslet_geometry.json");
-    t0 = std::chrono::steady_clock::now();
+    step.Lap();
     const RenderedLightField gt = RenderDecodedGroundTruth(scene, camera, capture, options.ground_truth_supersampling);
-    summary["timings_s"]["render_ground_truth"] = SecondsSince(t0);
+    summary["timings_s"]["render_ground_truth"] = step.Lap();
     WriteBundle(ToBundle(gt, scene), out_dir / "ground_truth" / "decoded.h5", bundle_options);
     result.files.push_back("ground_truth/decoded.h5");
     summary["capture"] = {
@@ -169,7 +164,7 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
   nlohmann::json files = nlohmann::json::array();
   for (const auto& f : result.files) files.push_back(f.generic_string());
   summary["files"] = files;
-  summary["timings_s"]["total"] = SecondsSince(start);
+  summary["timings_s"]["total"] = total.Seconds();
   return result;
 }
 
