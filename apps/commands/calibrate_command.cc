@@ -20,7 +20,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/progress.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -121,7 +121,7 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
                             {"rejected_captures", result.rejected_captures},
                             {"warnings", result.warnings},
                             {"seconds", seconds}};
-  WriteJsonSummary(summary, SummaryPathFor(options.out));
+  stages::WriteJsonSummary(summary, stages::SummaryPathFor(options.out));
 }
 
 void AddCalibrateCommand(CLI::App& app) {

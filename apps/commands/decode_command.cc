@@ -1,17 +1,15 @@
 // `lfsp decode CAPTURE [--white-images DIR] --out OUT`: a Lytro raw capture to a 4D light field.
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "command_registry.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/load.h"
 #include "lfsp/decode/capture_decoder.h"
 #include "raw_input_options.h"
-#include "summary.h"
+#include "stages/decode_stage.h"
 
 namespace lfsp::cli {
 namespace {
@@ -41,24 +39,18 @@ void RunDecode(const DecodeCommandOptions& options) {
   if (!(options.dehex >= 0.0 && options.dehex <= 0.25)) throw Error("--dehex must be in [0, 0.25]");
   decode_options.decode.dehex = options.dehex;
 
-  decode::CaptureDecodeResult result = decode::DecodeCaptureFile(options.capture, decode_options);
-  const auto write_start = std::chrono::steady_clock::now();
-  Bundle bundle;
-  bundle.light_field = std::move(result.light_field);
-  SaveLightField(bundle, options.out, options.bit_depth);
-  result.summary["output"] = options.out;
-  result.summary["seconds"]["write"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
-  result.summary["parameters"] = {{"demosaic", options.demosaic},
-                                  {"colour", options.colour},
-                                  {"hot_pixels", !options.no_hot_pixels},
-                                  {"dehex", options.dehex},
-                                  {"bit_depth", options.bit_depth}};
-  WriteJsonSummary(result.summary, SummaryPathFor(options.out));
-  const auto& lf = result.summary["light_field"];
-  std::printf("%s: %dx%d views of %dx%d -> %s\nwhite image: %s\n", options.capture.c_str(), lf["nu"].get<int>(),
-              lf["nv"].get<int>(), lf["width"].get<int>(), lf["height"].get<int>(), options.out.c_str(),
-              result.summary["white_image"]["why"].get<std::string>().c_str());
+  const nlohmann::json parameters = {{"parameters",
+                                      {{"demosaic", options.demosaic},
+                                       {"colour", options.colour},
+                                       {"hot_pixels", !options.no_hot_pixels},
+                                       {"dehex", options.dehex},
+                                       {"bit_depth", options.bit_depth}}}};
+  const stages::DecodeStageResult result =
+      stages::RunDecodeStage(options.capture, decode_options, options.out, options.bit_depth, parameters);
+  const nlohmann::json& lf = result.summary.at("light_field");
+  std::printf("%s: %dx%d views of %dx%d -> %s\nwhite image: %s\n", options.capture.c_str(), lf.at("nu").get<int>(),
+              lf.at("nv").get<int>(), lf.at("width").get<int>(), lf.at("height").get<int>(), options.out.c_str(),
+              result.summary.at("white_image").at("why").get<std::string>().c_str());
 }
 
 void AddDecodeCommand(CLI::App& app) {

@@ -6,7 +6,6 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <memory>
 #include <string>
 
@@ -14,10 +13,9 @@
 #include "input_loading.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/depth/depth_estimator.h"
-#include "lfsp/depth/depth_io.h"
-#include "lfsp/depth/metrics.h"
-#include "summary.h"
+#include "stages/depth_stage.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -45,41 +43,14 @@ depth::DepthOptions MethodOptions(const DepthCommandOptions& options) {
 
 void RunDepth(const DepthCommandOptions& options) {
   const depth::DepthOptions method = MethodOptions(options);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   Bundle bundle = LoadInput(options.input);
-  const nlohmann::json views = SelectViews(bundle, options.views, options.input);
-  const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::ordered_json summary = {{"command", "depth"}, {"input", options.input}};
+  summary["views"] = SelectViews(bundle, options.views, options.input);
+  summary["load_seconds"] = stopwatch.Seconds();
   spdlog::info("{}: {}", options.input, ToString(bundle.light_field.shape()));
-  const depth::DepthResult result = depth::EstimateDepth(bundle.light_field, method);
-  const depth::DepthOutputPaths paths = depth::OutputPathsFor(options.output);
-  depth::WriteDepthOutputs(result, paths);
-
-  nlohmann::json summary;
-  summary["command"] = "depth";
-  summary["input"] = options.input;
-  summary["views"] = views;
-  summary["outputs"] = {{"disparity", paths.disparity.string()},
-                        {"preview", paths.preview.string()},
-                        {"confidence", paths.confidence.string()}};
-  summary["range"] = {{"min", result.range.min}, {"max", result.range.max}, {"source", result.range_source}};
-  summary["parameters"] = depth::ToJson(method);
-  summary["occlusion_candidates"] = result.occlusion_candidates;
-  summary["noise_sigma"] = result.noise_sigma;
-  summary["presmooth_sigma"] = result.presmooth_sigma;
-  summary["excluded_ring"] = result.excluded_ring;
-  summary["detail_weight"] = result.detail_weight;
-  summary["timings_seconds"] = result.timings;
-  summary["timings_seconds"]["load"] = load_seconds;
-  if (bundle.disparity && bundle.disparity->width() == result.disparity.width() &&
-      bundle.disparity->height() == result.disparity.height()) {
-    const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(result.disparity, *bundle.disparity);
-    summary["metrics_vs_input_ground_truth"] = depth::ToJson(evaluation);
-    spdlog::info("vs ground truth: MSE x100 {:.2f}, BadPix 0.07 {:.2f} %", evaluation.all.mse_x100,
-                 evaluation.all.badpix_007);
-  }
-  WriteJsonSummary(summary, SummaryPathFor(paths.disparity));
-  spdlog::info("wrote {} ({:.2f} s)", paths.disparity.string(),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  stages::RunDepthStage(bundle, method, options.output, std::move(summary));
+  spdlog::info("wrote {} ({:.2f} s)", options.output, stopwatch.Seconds());
 }
 
 void AddDepthCommand(CLI::App& parent) {

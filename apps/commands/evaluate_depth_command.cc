@@ -8,7 +8,7 @@
 #include "evaluate_registry.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/depth/metrics.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -28,7 +28,7 @@ void RunEvaluateDepth(const EvaluateDepthOptions& options) {
   report["algo"] = options.algo;
   report["gt"] = options.gt;
   std::cout << report.dump(2) << "\n";
-  if (!options.json.empty()) WriteJsonSummary(report, options.json);
+  if (!options.json.empty()) stages::WriteJsonSummary(report, options.json);
 }
 
 void AddEvaluateDepth(CLI::App& evaluate) {

@@ -12,12 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "../summary.h"
 #include "evaluate_registry.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/segment/evaluate.h"
+#include "stages/evaluate_stage.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -29,7 +30,7 @@ struct EvaluateSegmentationOptions {
   std::string json;
   bool baselines = false;
   bool no_refocus = false;
-  std::vector<double> refocus_levels = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5};
+  std::vector<double> refocus_levels = segment::DefaultRefocusLevels();
   int tolerance = 2;
 };
 
@@ -50,31 +51,19 @@ void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
     }
   }
 
-  segment::EvaluationInputs inputs;
-  inputs.light_field = &bundle.light_field;
-  inputs.labels = &*bundle.labels;
-  inputs.gt_labels = gt_labels ? &*gt_labels : nullptr;
-  inputs.gt_disparity = gt_disparity ? &*gt_disparity : nullptr;
-  inputs.segmentation_disparity = bundle.disparity ? &*bundle.disparity : nullptr;
-
   segment::EvaluationOptions evaluation;
   evaluation.boundary_tolerance = options.tolerance;
   evaluation.baselines = options.baselines;
-  evaluation.refocus = !options.no_refocus && bundle.disparity.has_value();
+  evaluation.refocus = !options.no_refocus;
   evaluation.refocus_levels = options.refocus_levels;
-  const Metadata& metadata = bundle.light_field.metadata;
-  if (metadata.contains("lfsp_segment") && metadata["lfsp_segment"].contains("parameters")) {
-    evaluation.lfsp = segment::ParamsFromJson(metadata["lfsp_segment"]["parameters"], options.input + " metadata");
-  }
-  evaluation.baseline.size = evaluation.lfsp.size;
-
-  nlohmann::json report = segment::EvaluateSegmentation(inputs, evaluation);
+  const stages::GroundTruth truth{gt_disparity ? &*gt_disparity : nullptr, gt_labels ? &*gt_labels : nullptr};
+  nlohmann::json report = stages::EvaluateSegmentationBundle(bundle, truth, evaluation, options.input);
   report["input"] = options.input;
   report["self_similarity_disparity"] = gt_disparity ? gt_disparity_source : std::string("none (give --gt-disparity)");
   if (gt_labels) report["gt_labels"] = options.gt_labels;
   if (!gt_disparity) spdlog::warn("no --gt-disparity: self-similarity and labels per pixel are not reported");
   std::cout << report.dump(2) << "\n";
-  if (!options.json.empty()) WriteJsonSummary(report, options.json);
+  if (!options.json.empty()) stages::WriteJsonSummary(report, options.json);
 }
 
 void AddEvaluateSegmentation(CLI::App& evaluate) {

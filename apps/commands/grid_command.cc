@@ -14,7 +14,7 @@
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/raw_input.h"
 #include "raw_input_options.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -74,7 +74,7 @@ void RunGrid(const GridCommandOptions& options) {
                              {"kind", std::string(decode::ToString(kind))},
                              {"grid", grid.ToJson()},
                              {"seconds", seconds}};
-  WriteJsonSummary(document, options.out);
+  stages::WriteJsonSummary(document, options.out);
   if (!options.centres.empty()) WriteCentres(grid, options.centres);
   const std::string quality =
       grid.fit_method == "capture periodicity"

@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,13 +11,14 @@
 #include "command_registry.h"
 #include "input_loading.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
-#include "lfsp/core/visualize.h"
-#include "lfsp/edit/labels_file.h"
+#include "lfsp/core/stopwatch.h"
+#include "lfsp/edit/colour_adjust.h"
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/selection.h"
-#include "summary.h"
+#include "stages/recolor_stage.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -43,10 +43,6 @@ struct RecolorCommandOptions {
   std::string out;
 };
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, const Labels& labels,
                                           nlohmann::ordered_json& how) {
   const int ways = (options.label_ids.empty() ? 0 : 1) + (options.at.empty() ? 0 : 1) + (options.mask.empty() ? 0 : 1);
@@ -65,15 +61,7 @@ std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, 
   return edit::SelectByMask(labels, ReadImage(options.mask).pixels, 0.5);
 }
 
-// Preview names beside the output: out/edited.h5 -> out/edited.before.png and out/edited.after.png.
-fs::path PreviewPath(const fs::path& out, const std::string& which) {
-  fs::path name = out.stem();
-  name += "." + which + ".png";
-  return out.parent_path() / name;
-}
-
-void RunRecolor(const RecolorCommandOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+edit::RecolorOptions RecolorOptionsOf(const RecolorCommandOptions& options) {
   if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
   edit::RecolorOptions recolor;
   recolor.adjustment.hue_degrees = options.hue;
@@ -84,20 +72,14 @@ void RunRecolor(const RecolorCommandOptions& options) {
   recolor.use_ray_weights = !options.no_weights;
   edit::ValidateAdjustment(recolor.adjustment);
   if (!(options.feather >= 0.0f)) throw Error("--feather: expected a width >= 0 pixels");
+  return recolor;
+}
 
-  std::error_code ec;
-  if (fs::exists(options.out, ec) && fs::equivalent(options.input, options.out, ec))
-    throw Error("--out " + options.out + " is the input: inputs are never modified, choose another path");
-
-  nlohmann::ordered_json summary;
-  nlohmann::ordered_json timings;
-  summary["command"] = "recolor";
-  summary["input"] = options.input;
-
-  auto step = std::chrono::steady_clock::now();
+// The light field with the labels to recolour by: the --labels file's, else its own.
+Bundle LoadLabelledInput(const RecolorCommandOptions& options, nlohmann::ordered_json& summary) {
   Bundle bundle = LoadInput(options.input);
   if (!options.labels.empty()) {
-    bundle.labels = edit::ReadLabelsFile(options.labels);
+    bundle.labels = ReadLabels(options.labels);
   } else if (!bundle.labels) {
     throw Error(options.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
   }
@@ -106,52 +88,26 @@ void RunRecolor(const RecolorCommandOptions& options) {
   const int requested =
       options.views > 0 ? options.views : (label_views < bundle.light_field.shape().nu ? label_views : 0);
   summary["views"] = SelectViews(bundle, requested, options.input);
-  edit::CheckLabelsMatch(*bundle.labels, bundle.light_field.shape(),
-                         options.labels.empty() ? options.input : options.labels);
-  timings["load_s"] = SecondsSince(step);
-
-  nlohmann::ordered_json how;
-  const std::vector<std::int32_t> selection = ChooseSelection(options, *bundle.labels, how);
-  spdlog::info("selected {} superpixel(s)", selection.size());
-
-  LightField& light_field = bundle.light_field;
-  const ViewIndex centre = light_field.shape().Centre();
-  const cv::Mat before = DisplayEncoded(light_field.View(centre), light_field.transfer);
-  step = std::chrono::steady_clock::now();
-  const edit::RecolorStats stats = edit::Recolor(light_field, *bundle.labels, selection, recolor);
-  timings["recolor_s"] = SecondsSince(step);
-  const cv::Mat after = DisplayEncoded(light_field.View(centre), light_field.transfer);
-
-  step = std::chrono::steady_clock::now();
-  SaveLightField(bundle, options.out, options.bit_depth);
-  const fs::path before_path = PreviewPath(options.out, "before");
-  const fs::path after_path = PreviewPath(options.out, "after");
-  WriteImage(before, before_path);
-  WriteImage(after, after_path);
-  timings["save_s"] = SecondsSince(step);
-
   summary["labels"] = options.labels.empty() ? options.input : options.labels;
-  summary["selection"] = how;
-  summary["selected_labels"] = selection;
-  summary["adjustment"] = {
-      {"space", options.space},           {"hue_degrees", options.hue},
-      {"saturation", options.saturation}, {"value", options.value},
-      {"feather_px", options.feather},    {"ray_weights", recolor.use_ray_weights && light_field.HasWeights()}};
-  const double total_rays = static_cast<double>(light_field.shape().Views() * light_field.shape().ViewPixels());
-  summary["rays"] = {{"total", static_cast<std::size_t>(total_rays)},
-                     {"selected", stats.selected_rays},
-                     {"feather", stats.feather_rays},
-                     {"changed", stats.changed_rays},
-                     {"selected_fraction", static_cast<double>(stats.selected_rays) / total_rays},
-                     {"selected_per_view", stats.selected_rays_per_view}};
-  summary["outputs"] = {
-      {"light_field", options.out}, {"before_preview", before_path.string()}, {"after_preview", after_path.string()}};
-  timings["total_s"] = SecondsSince(start);
-  summary["timings"] = timings;
-  const fs::path summary_path = SummaryPathFor(options.out);
-  WriteJsonSummary(summary, summary_path);
-  spdlog::info("recoloured {} rays ({} in the feather band); wrote {}", stats.changed_rays, stats.feather_rays,
-               options.out);
+  RequireLabelsMatch(*bundle.labels, bundle.light_field.shape(), summary["labels"].get<std::string>());
+  return bundle;
+}
+
+void RunRecolor(const RecolorCommandOptions& options) {
+  const Stopwatch stopwatch;
+  stages::RecolorStageOptions stage;
+  stage.recolor = RecolorOptionsOf(options);
+  stage.bit_depth = options.bit_depth;
+  std::error_code ec;
+  if (fs::exists(options.out, ec) && fs::equivalent(options.input, options.out, ec))
+    throw Error("--out " + options.out + " is the input: inputs are never modified, choose another path");
+
+  nlohmann::ordered_json summary = {{"command", "recolor"}, {"input", options.input}};
+  Bundle bundle = LoadLabelledInput(options, summary);
+  summary["load_seconds"] = stopwatch.Seconds();
+  stage.selection = ChooseSelection(options, *bundle.labels, stage.how);
+  spdlog::info("selected {} superpixel(s)", stage.selection.size());
+  stages::RunRecolorStage(bundle, stage, options.out, std::move(summary));
 }
 
 void AddRecolorCommand(CLI::App& app) {

@@ -15,7 +15,7 @@
 #include "lfsp/calibrate/rectify.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -73,7 +73,7 @@ void RunRectify(const RectifyCommandOptions& options) {
       {"parameters", {{"inverse_iterations", options.inverse_iterations}, {"bit_depth", options.bit_depth}}},
       {"rectified_H", calibrate::MatrixToJson(rectified.H)},
       {"seconds", seconds}};
-  WriteJsonSummary(summary, SummaryPathFor(options.out));
+  stages::WriteJsonSummary(summary, stages::SummaryPathFor(options.out));
 }
 
 void AddRectifyCommand(CLI::App& app) {

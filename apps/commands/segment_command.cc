@@ -7,20 +7,17 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <memory>
 #include <string>
 
 #include "command_registry.h"
 #include "input_loading.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/segment/lfsp.h"
-#include "lfsp/segment/metrics.h"
-#include "lfsp/segment/output.h"
-#include "summary.h"
+#include "stages/segment_stage.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -37,16 +34,11 @@ struct SegmentCommandOptions {
   segment::LfspParams params;
 };
 
-std::filesystem::path Beside(const std::filesystem::path& output, const std::string& suffix) {
-  std::filesystem::path path = output;
-  path.replace_extension();
-  return path.string() + suffix;
-}
-
 void RunSegment(const SegmentCommandOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   Bundle bundle = LoadInput(options.input);
-  const nlohmann::json views = SelectViews(bundle, options.views, options.input);
+  nlohmann::ordered_json summary = {{"command", "segment"}, {"input", options.input}};
+  summary["views"] = SelectViews(bundle, options.views, options.input);
   DisparityMap disparity;
   std::string disparity_source;
   if (!options.disparity.empty()) {
@@ -58,66 +50,15 @@ void RunSegment(const SegmentCommandOptions& options) {
   } else {
     throw Error(options.input + ": no disparity in the input; give --disparity DISP.pfm");
   }
-  const LightFieldShape shape = bundle.light_field.shape();
-  spdlog::info("{}: {}, disparity from {}", options.input, ToString(shape), disparity_source);
-  const segment::LfspResult result = segment::SegmentLightField(bundle.light_field, disparity, options.params);
-  spdlog::info("{} superpixels, {} label moves in {} iterations ({:.2f} s)", result.superpixels, result.label_moves,
-               result.iterations_run, result.timings.total_seconds);
-
-  const std::filesystem::path out = options.output;
-  const int row = options.epi_row >= 0 ? options.epi_row : shape.height / 2;
-  const int column = options.epi_column >= 0 ? options.epi_column : shape.width / 2;
-  const std::filesystem::path planes_path = Beside(out, ".planes.json");
-  const std::filesystem::path centre_path = Beside(out, ".overlay_centre.png");
-  const std::filesystem::path epi_h_path = Beside(out, ".overlay_epi_h.png");
-  const std::filesystem::path epi_v_path = Beside(out, ".overlay_epi_v.png");
-  segment::WritePng(segment::CentreOverlay(bundle.light_field, result.labels), centre_path);
-  segment::WritePng(segment::HorizontalEpiOverlay(bundle.light_field, result.labels, row), epi_h_path);
-  segment::WritePng(segment::VerticalEpiOverlay(bundle.light_field, result.labels, column), epi_v_path);
-  WriteJsonSummary(segment::PlanesToJson(result.planes), planes_path);
-  if (!options.labels_png.empty()) segment::WriteLabelPngs(result.labels, options.labels_png);
-
-  // The bundle is self-contained for `lfsp evaluate segmentation`: light field, the disparity LFSP used, labels,
-  // and the parameters in the metadata (for the refocus sweep).
-  Bundle labelled;
-  labelled.light_field = std::move(bundle.light_field);
-  labelled.light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.params, disparity_source);
-  labelled.disparity = disparity;
-  labelled.labels = result.labels;
-  WriteBundle(labelled, out, CompactBundleOptions(labelled.light_field));
-
-  nlohmann::json summary;
-  summary["command"] = "segment";
-  summary["input"] = options.input;
-  summary["views"] = views;
-  summary["disparity"] = disparity_source;
-  summary["shape"] = ToString(shape);
-  summary["outputs"] = {{"bundle", out.string()},
-                        {"planes", planes_path.string()},
-                        {"overlay_centre", centre_path.string()},
-                        {"overlay_epi_horizontal", epi_h_path.string()},
-                        {"overlay_epi_vertical", epi_v_path.string()},
-                        {"epi_row", row},
-                        {"epi_column", column}};
-  if (!options.labels_png.empty()) summary["outputs"]["labels_png"] = options.labels_png;
-  summary["parameters"] = segment::ToJson(options.params);
-  summary["superpixels"] = result.superpixels;
-  summary["effective_label_ratio"] = segment::EffectiveLabelRatio(result.labels);
-  summary["noise_sigma"] = result.noise_sigma;
-  summary["presmooth"] = result.presmooth;
-  summary["iterations"] = result.iterations_run;
-  summary["label_moves"] = result.label_moves;
-  summary["moves_per_iteration"] = result.moves_per_iteration;
-  summary["timings_seconds"] = {
-      {"lab", result.timings.lab_seconds},
-      {"initial", result.timings.initial_seconds},
-      {"projection", result.timings.projection_seconds},
-      {"refine", result.timings.refine_seconds},
-      {"cleanup", result.timings.cleanup_seconds},
-      {"segmentation", result.timings.total_seconds},
-      {"command", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
-  WriteJsonSummary(summary, SummaryPathFor(out));
-  spdlog::info("wrote {}", out.string());
+  summary["load_seconds"] = stopwatch.Seconds();
+  spdlog::info("{}: {}, disparity from {}", options.input, ToString(bundle.light_field.shape()), disparity_source);
+  stages::SegmentStageOptions stage;
+  stage.params = options.params;
+  stage.epi_row = options.epi_row;
+  stage.epi_column = options.epi_column;
+  stage.labels_png = options.labels_png;
+  stages::RunSegmentStage(bundle.light_field, disparity, disparity_source, stage, options.output, std::move(summary));
+  spdlog::info("wrote {} ({:.2f} s)", options.output, stopwatch.Seconds());
 }
 
 // Adds --name for one numeric parameter, documenting its default.

@@ -10,7 +10,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/simulate/scene.h"
 #include "lfsp/simulate/simulate.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -47,7 +47,7 @@ void RunSimulate(SimulateCommandOptions& options) {
   nlohmann::json summary = result.summary;
   summary["out"] = options.out;
   summary["camera_option"] = options.library.camera;
-  WriteJsonSummary(summary, SummaryPathFor(options.out));
+  stages::WriteJsonSummary(summary, stages::SummaryPathFor(options.out));
   for (const auto& file : result.files) std::printf("%s\n", (std::filesystem::path(options.out) / file).c_str());
 }
 

@@ -11,7 +11,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/decode/lytro_capture.h"
 #include "lfsp/decode/white_database.h"
-#include "summary.h"
+#include "stages/summary.h"
 
 namespace lfsp::cli {
 namespace {
@@ -42,12 +42,13 @@ void RunBuild(const WhitesOptions& options) {
                                         : std::filesystem::path(options.out);
   decode::WriteWhiteImageDatabase(db, out);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteJsonSummary({{"command", "whites build"},
-                    {"inputs", {{"dir", options.dir}}},
-                    {"outputs", {{"database", out.string()}}},
-                    {"metrics", {{"white_images", db.entries.size()}, {"skipped", db.skipped.size()}}},
-                    {"timings_s", {{"total", seconds}}}},
-                   SummaryPathFor(out));
+  stages::WriteJsonSummary(
+      nlohmann::ordered_json{{"command", "whites build"},
+                             {"inputs", {{"dir", options.dir}}},
+                             {"outputs", {{"database", out.string()}}},
+                             {"metrics", {{"white_images", db.entries.size()}, {"skipped", db.skipped.size()}}},
+                             {"timings_s", {{"total", seconds}}}},
+      stages::SummaryPathFor(out));
   if (options.json) {
     std::cout << decode::WhiteImageDatabaseJson(db, out.parent_path()).dump(2) << std::endl;
   } else {

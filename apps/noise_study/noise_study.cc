@@ -9,7 +9,6 @@
 #include <map>
 #include <opencv2/core.hpp>
 
-#include "../summary.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
@@ -29,6 +28,7 @@
 #include "lfsp/simulate/scene.h"
 #include "lfsp/simulate/simulate.h"
 #include "line_plot.h"
+#include "stages/summary.h"
 
 namespace lfsp::noise_study {
 namespace fs = std::filesystem;
@@ -328,7 +328,7 @@ NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
   summary["degradation"] = Degradation(rows);
   summary["files"] = {"noise_study.csv", "plot_<noise>_<metric>.png"};
   summary["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  cli::WriteJsonSummary(summary, options.out / "summary.json");
+  stages::WriteJsonSummary(summary, options.out / "summary.json");
   return result;
 }
 

@@ -3,41 +3,35 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <limits>
 
-#include "../input_loading.h"
-#include "../report/html_report.h"
-#include "../summary.h"
-#include "../view_selection.h"
+#include "input_loading.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/image_io.h"
-#include "lfsp/core/load.h"
-#include "lfsp/core/pfm.h"
-#include "lfsp/core/visualize.h"
-#include "lfsp/decode/capture_decoder.h"
+#include "lfsp/core/stats.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/container_info.h"
-#include "lfsp/depth/metrics.h"
-#include "lfsp/edit/recolor.h"
 #include "lfsp/edit/refocus.h"
 #include "lfsp/edit/selection.h"
-#include "lfsp/segment/evaluate.h"
 #include "lfsp/segment/lfsp.h"
-#include "lfsp/segment/metrics.h"
 #include "pipeline_report.h"
 #include "recolor_spec.h"
+#include "report/html_report.h"
+#include "stages/decode_stage.h"
+#include "stages/depth_stage.h"
+#include "stages/evaluate_stage.h"
+#include "stages/recolor_stage.h"
+#include "stages/refocus_stage.h"
+#include "stages/segment_stage.h"
+#include "stages/summary.h"
 #include "truth_comparison.h"
+#include "view_selection.h"
 
 namespace lfsp::pipeline {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Runs the stages in order, logging "[i/n] name" and recording each stage's wall time.
 class StageRunner {
@@ -48,13 +42,12 @@ class StageRunner {
   auto Run(const std::string& name, Work work) {
     ++index_;
     spdlog::info("[{}/{}] {}", index_, count_, name);
-    const auto start = Clock::now();
-    struct Record {
+    struct Record {  // records the time even when the stage throws
       StageRunner* runner;
       std::string name;
-      Clock::time_point start;
-      ~Record() { runner->timings_[name] = std::chrono::duration<double>(Clock::now() - start).count(); }
-    } record{this, name, start};
+      Stopwatch stopwatch;
+      ~Record() { runner->timings_[name] = stopwatch.Seconds(); }
+    } record{this, name, {}};
     return work();
   }
 
@@ -116,21 +109,13 @@ std::optional<TruthComparison> AttachSimulatorGroundTruth(const fs::path& captur
 // Depth needs a disparity range: the user's, else the light field's metadata, else the ground truth's (padded),
 // else depth estimates it from the views.
 depth::DepthOptions WithDisparityRange(depth::DepthOptions options, const Bundle& bundle) {
-  if (options.range || DisparityRangeFromMetadata(bundle.light_field.metadata)) return options;
-  if (bundle.disparity) {
-    DisparityRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-    for (int i = 0; i < bundle.disparity->width() * bundle.disparity->height(); ++i) {
-      const float d = bundle.disparity->data()[i];
-      if (!std::isfinite(d)) continue;
-      range.min = std::min(range.min, d);
-      range.max = std::max(range.max, d);
-    }
-    const float pad = 0.1f * (range.max - range.min) + 0.05f;
-    options.range = DisparityRange{range.min - pad, range.max + pad};
-    spdlog::info("disparity range {:.2f} .. {:.2f} from the ground truth", options.range->min, options.range->max);
-    return options;
-  }
-  return options;  // depth estimates it from the views
+  if (options.range || DisparityRangeFromMetadata(bundle.light_field.metadata) || !bundle.disparity) return options;
+  const ValueStats truth = DisparityStats(*bundle.disparity);
+  if (truth.count == 0) return options;
+  const float pad = static_cast<float>(0.1 * (truth.max - truth.min) + 0.05);
+  options.range = DisparityRange{static_cast<float>(truth.min) - pad, static_cast<float>(truth.max) + pad};
+  spdlog::info("disparity range {:.2f} .. {:.2f} from the ground truth", options.range->min, options.range->max);
+  return options;
 }
 
 // Bytes of every file the run wrote (relative paths), and their total.
@@ -150,6 +135,84 @@ nlohmann::ordered_json OutputSizes(const fs::path& folder) {
   return sizes;
 }
 
+// A .png/.tif is a light field (ESLF) unless a camera says it is a raw Bayer mosaic.
+bool IsRawCapture(const fs::path& input, const PipelineOptions& options) {
+  return decode::LooksLikeLytroFile(input) || (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
+}
+
+// The light field to process, its samples as segmentation.h5 will store them (so every later stage computes what the
+// single commands compute from the written files), the views chosen, and a simulated capture's ground truth.
+Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohmann::ordered_json& summary,
+                    std::optional<TruthComparison>& truth_comparison) {
+  Bundle bundle;
+  if (IsRawCapture(input, options)) {
+    decode::CaptureDecodeOptions decode_options;
+    decode_options.white_images = options.white_images;
+    decode_options.no_white_image = options.no_white_image;
+    decode_options.plain = options.plain;
+    stages::DecodeStageResult decoded = stages::RunDecodeStage(input, decode_options);
+    bundle = std::move(decoded.bundle);
+    summary["decode"] = std::move(decoded.summary);
+    truth_comparison = AttachSimulatorGroundTruth(input, bundle);
+  } else {
+    bundle = cli::LoadInput(input);
+    RoundToStoredPrecision(bundle.light_field, CompactBundleOptions(bundle.light_field).storage);
+  }
+  // The light field is stored once, in segmentation.h5, after the views to process are chosen.
+  summary["views"] = cli::SelectViews(bundle, options.views, input.string());
+  summary["light_field"] = ToString(bundle.light_field.shape());
+  return bundle;
+}
+
+// The depth stage's choices, and where its disparity range came from (a range the pipeline took from the ground
+// truth reaches depth as an option).
+nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const PipelineOptions& options) {
+  const depth::DepthResult& estimate = depth.estimate;
+  const bool from_truth = !options.depth.range && estimate.range_source == "options";
+  return {{"disparity_range",
+           {{"min", estimate.range.min},
+            {"max", estimate.range.max},
+            {"source", from_truth ? "ground truth" : estimate.range_source}}},
+          {"depth_choices",
+           {{"noise_sigma", estimate.noise_sigma},
+            {"presmooth_sigma", estimate.presmooth_sigma},
+            {"excluded_ring", estimate.excluded_ring},
+            {"detail_weight", estimate.detail_weight}}}};
+}
+
+// `--recolor`: the recolour stage on a copy of the light field (the report and the focal stack show the original),
+// with the labels and disparity, as `lfsp recolor segmentation.h5` would read them.
+stages::RecolorStageResult RecolorStage(const RecolorSpec& spec, const Bundle& bundle, const DisparityMap& disparity,
+                                        const Labels& labels, const fs::path& work) {
+  stages::RecolorStageOptions options;
+  options.recolor = spec.options;
+  if (spec.points.empty()) {
+    options.selection = edit::SelectLabelIds(labels, spec.ids);
+    options.how = {{"by", "label-ids"}, {"label_ids", spec.ids}};
+  } else {
+    options.selection = edit::SelectAtPoints(labels, spec.points);
+    nlohmann::ordered_json points = nlohmann::ordered_json::array();
+    for (const cv::Point& point : spec.points)
+      points.push_back(std::to_string(point.x) + "," + std::to_string(point.y));
+    options.how = {{"by", "at"}, {"points", points}};
+  }
+  Bundle recoloured;
+  recoloured.light_field = bundle.light_field;
+  recoloured.disparity = disparity;
+  recoloured.labels = labels;
+  return stages::RunRecolorStage(recoloured, options, work / "recolored.h5", {{"input", "segmentation.h5"}});
+}
+
+void WriteReport(const ReportInputs& inputs, const PipelineOptions& options, const nlohmann::ordered_json& metrics,
+                 const nlohmann::ordered_json& timings, const fs::path& path) {
+  report::Report report = BuildReport(inputs, options);
+  report.metrics = metrics;
+  report.timings = timings;  // stages so far; the report stage itself is in summary.json
+  std::ofstream file(path);
+  file << report::RenderHtml(report);
+  if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
+}
+
 }  // namespace
 
 fs::path DefaultSample() {
@@ -163,7 +226,7 @@ fs::path DefaultSample() {
 }
 
 PipelineResult RunPipeline(const PipelineOptions& options) {
-  const auto wall_start = Clock::now();
+  const Stopwatch wall;
   const fs::path input = options.input.empty() ? DefaultSample() : options.input;
   // Parse everything the user typed before any work, so a typo fails at once.
   const std::optional<RecolorSpec> recolor =
@@ -180,134 +243,62 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   StageRunner stages(recolor ? 7 : 6, timings);
 
-  // A .png/.tif is a light field (ESLF) unless a camera says it is a raw Bayer mosaic.
-  const bool raw_capture =
-      decode::LooksLikeLytroFile(input) || (!options.plain.camera.empty() && decode::IsPlainRawImagePath(input));
   std::optional<TruthComparison> truth_comparison;
-  Bundle bundle = stages.Run(raw_capture ? "decode" : "load", [&] {
-    Bundle out;
-    if (raw_capture) {
-      decode::CaptureDecodeOptions decode_options;
-      decode_options.white_images = options.white_images;
-      decode_options.no_white_image = options.no_white_image;
-      decode_options.plain = options.plain;
-      decode::CaptureDecodeResult decoded = decode::DecodeCaptureFile(input, decode_options);
-      out.light_field = std::move(decoded.light_field);
-      summary["decode"] = decoded.summary;
-      truth_comparison = AttachSimulatorGroundTruth(input, out);
-    } else {
-      out = cli::LoadInput(input);
-    }
-    // The light field is stored once, in segmentation.h5, after the views to process are chosen.
-    summary["views"] = cli::SelectViews(out, options.views, input.string());
-    return out;
-  });
-  const LightField& light_field = bundle.light_field;
-  summary["light_field"] = ToString(light_field.shape());
+  Bundle bundle = stages.Run(IsRawCapture(input, options) ? "decode" : "load",
+                             [&] { return LoadOrDecode(input, options, summary, truth_comparison); });
+  LightField& light_field = bundle.light_field;
   // What depends on the view size is checked before depth, the first long stage.
   segment::RequireSuperpixelSizeFits(options.segment.size, light_field.shape(), "--size");
   if (recolor) edit::RequirePointsInside(recolor->points, light_field.shape().width, light_field.shape().height);
 
-  const depth::DepthResult depth_result = stages.Run("depth", [&] {
-    depth::DepthResult estimate = depth::EstimateDepth(light_field, WithDisparityRange(options.depth, bundle));
-    WritePfm(estimate.disparity, work / "disparity.pfm");
-    WritePfm(estimate.confidence, work / "confidence.pfm");
-    return estimate;
+  // Each stage writes what its command writes; the pipeline keeps their summaries under the stage's name.
+  const stages::DepthStageResult depth = stages.Run("depth", [&] {
+    return stages::RunDepthStage(bundle, WithDisparityRange(options.depth, bundle), work / "disparity.pfm",
+                                 {{"input", input.string()}});
   });
-  // A range the pipeline took from the ground truth reaches depth as an option: say where it came from.
-  const bool from_truth = !options.depth.range && depth_result.range_source == "options";
-  summary["disparity_range"] = {{"min", depth_result.range.min},
-                                {"max", depth_result.range.max},
-                                {"source", from_truth ? "ground truth" : depth_result.range_source}};
-  summary["depth_choices"] = {{"noise_sigma", depth_result.noise_sigma},
-                              {"presmooth_sigma", depth_result.presmooth_sigma},
-                              {"excluded_ring", depth_result.excluded_ring},
-                              {"detail_weight", depth_result.detail_weight}};
-
-  const segment::LfspResult segmentation = stages.Run("segment", [&] {
-    segment::LfspResult lfsp = segment::SegmentLightField(light_field, depth_result.disparity, options.segment);
-    // The bundle is self-contained for `lfsp evaluate segmentation`. The light field and labels are moved in and
-    // back out rather than copied: each is a full 4D array.
-    Bundle labelled;
-    labelled.light_field = std::move(bundle.light_field);
-    labelled.disparity = depth_result.disparity;
-    labelled.labels = std::move(lfsp.labels);
-    // As `lfsp segment` writes it: the parameters travel with the labels (evaluate re-runs the refocus sweep).
-    labelled.light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.segment, "lfsp depth");
-    WriteBundle(labelled, work / "segmentation.h5", CompactBundleOptions(labelled.light_field));
-    bundle.light_field = std::move(labelled.light_field);
-    lfsp.labels = std::move(*labelled.labels);
-    return lfsp;
+  summary.update(DepthSummary(depth, options));
+  const stages::SegmentStageResult segmentation = stages.Run("segment", [&] {
+    stages::SegmentStageOptions segment_options;
+    segment_options.params = options.segment;
+    return stages::RunSegmentStage(light_field, depth.estimate.disparity, (options.out / "disparity.pfm").string(),
+                                   segment_options, work / "segmentation.h5", {{"input", input.string()}});
   });
 
-  RecolorFigures recolor_figures;
+  std::optional<stages::RecolorStageResult> recoloured;
   if (recolor) {
-    stages.Run("recolor", [&] {
-      const Labels& labels = segmentation.labels;
-      const std::vector<std::int32_t> selection = recolor->points.empty()
-                                                      ? edit::SelectLabelIds(labels, recolor->ids)
-                                                      : edit::SelectAtPoints(labels, recolor->points);
-      Bundle recoloured;
-      recoloured.light_field = light_field;
-      const edit::RecolorStats stats = edit::Recolor(recoloured.light_field, labels, selection, recolor->options);
-      SaveLightField(recoloured, work / "recolored.h5");
-      const ViewIndex centre = light_field.shape().Centre();
-      recolor_figures.before = DisplayRgb8(light_field.View(centre), light_field.transfer);
-      recolor_figures.after = DisplayRgb8(recoloured.light_field.View(centre), light_field.transfer);
-      WriteImage(recolor_figures.before, work / "recolor_before.png");
-      WriteImage(recolor_figures.after, work / "recolor_after.png");
-      recolor_figures.selected_labels = selection.size();
-      summary["recolor"] = {{"spec", options.recolor},
-                            {"selected_labels", selection.size()},
-                            {"selected_rays", stats.selected_rays},
-                            {"changed_rays", stats.changed_rays}};
-      return 0;
+    recoloured = stages.Run("recolor", [&] {
+      return RecolorStage(*recolor, bundle, depth.estimate.disparity, segmentation.lfsp.labels, work);
     });
+    summary["recolor"] = {{"spec", options.recolor},
+                          {"selected_labels", recoloured->summary.at("selected_labels").size()},
+                          {"selected_rays", recoloured->stats.selected_rays},
+                          {"changed_rays", recoloured->stats.changed_rays}};
   }
 
-  FocalStackFigures focal_stack;
-  stages.Run("refocus", [&] {
-    focal_stack.disparities =
-        edit::EvenlySpacedDisparities(depth_result.range.min, depth_result.range.max, options.focal_stack_slices);
-    const std::vector<cv::Mat> slices = edit::FocalStack(light_field, focal_stack.disparities);
-    fs::create_directories(work / "focal_stack");
-    for (std::size_t i = 0; i < slices.size(); ++i) {
-      focal_stack.slices.push_back(DisplayRgb8(slices[i], light_field.transfer));
-      char name[64];
-      std::snprintf(name, sizeof name, "slice_%02zu_d%+.2f.png", i, focal_stack.disparities[i]);
-      WriteImage(focal_stack.slices.back(), work / "focal_stack" / name);
-    }
-    return 0;
+  stages::RefocusStageOptions refocus_options;
+  refocus_options.disparities =
+      edit::EvenlySpacedDisparities(depth.estimate.range.min, depth.estimate.range.max, options.focal_stack_slices);
+  const stages::RefocusStageResult focal_stack = stages.Run("refocus", [&] {
+    return stages::RunRefocusStage(bundle, refocus_options, work / "focal_stack", {{"input", input.string()}});
   });
 
-  nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
-  stages.Run("evaluate", [&] {
-    std::vector<DisparityMap> gt_view_disparity;
-    if (bundle.disparity) {
-      metrics["depth"] = depth::ToJson(depth::EvaluateDisparity(depth_result.disparity, *bundle.disparity));
-      gt_view_disparity = segment::PropagateDisparity(*bundle.disparity, light_field.shape());
-    }
-    if (truth_comparison) metrics["decode_vs_truth"] = ToJson(*truth_comparison);
-    metrics["segmentation"] = segment::ScoreLabels(segmentation.labels, bundle.labels ? &*bundle.labels : nullptr,
-                                                   bundle.disparity ? &*bundle.disparity : nullptr,
-                                                   bundle.disparity ? &gt_view_disparity : nullptr, 2);
-    return 0;
+  const nlohmann::ordered_json metrics = stages.Run("evaluate", [&] {
+    nlohmann::ordered_json scores =
+        stages::ScoreRun(depth.estimate.disparity, segmentation.lfsp.labels,
+                         {bundle.disparity ? &*bundle.disparity : nullptr, bundle.labels ? &*bundle.labels : nullptr});
+    if (truth_comparison) scores["decode_vs_truth"] = ToJson(*truth_comparison);
+    return scores;
   });
 
   stages.Run("report", [&] {
-    ReportInputs inputs{light_field,
-                        depth_result,
-                        segmentation,
-                        bundle.disparity ? &*bundle.disparity : nullptr,
-                        recolor ? &recolor_figures : nullptr,
-                        &focal_stack,
-                        truth_comparison ? &*truth_comparison : nullptr};
-    report::Report report = BuildReport(inputs, options);
-    report.metrics = metrics;
-    report.timings = timings;  // stages so far; the report stage itself is in summary.json
-    std::ofstream file(work / "report.html");
-    file << report::RenderHtml(report);
-    if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
+    const ReportInputs inputs{light_field,
+                              depth.estimate,
+                              segmentation.lfsp,
+                              bundle.disparity ? &*bundle.disparity : nullptr,
+                              recoloured ? &*recoloured : nullptr,
+                              FocalStackFigures{refocus_options.disparities, focal_stack.slices},
+                              truth_comparison ? &*truth_comparison : nullptr};
+    WriteReport(inputs, options, metrics, timings, work / "report.html");
     return 0;
   });
 
@@ -317,8 +308,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   summary["metrics"] = metrics;
   summary["output_bytes"] = OutputSizes(work);
   summary["timings"] = timings;
-  summary["wall_seconds"] = std::chrono::duration<double>(Clock::now() - wall_start).count();
-  cli::WriteJsonSummary(summary, work / "summary.json");
+  summary["wall_seconds"] = wall.Seconds();
+  stages::WriteJsonSummary(summary, work / "summary.json");
   run.Commit();
   result.report = options.out / "report.html";
   return result;

@@ -78,43 +78,39 @@ report::Section SuperpixelSection(const ReportInputs& inputs) {
   const LightField& light_field = inputs.light_field;
   const Labels& labels = inputs.segmentation.labels;
   const LightFieldShape& shape = light_field.shape();
-  const ViewIndex centre = shape.Centre();
   report::Section section{"Light-field superpixels", {}, {}};
-  const cv::Mat centre_rgb = DisplayRgb8(light_field.View(centre), light_field.transfer);
   section.figures.push_back({"LFSP boundaries, centre view",
                              std::to_string(inputs.segmentation.superpixels) + " superpixels",
-                             DrawLabelBoundaries(centre_rgb, labels.View(centre))});
-
-  // EPIs through the middle of the view: a consistent segmentation draws boundaries along the EPI lines.
-  const int stretch = std::max(4, 96 / std::max(shape.nu, shape.nv));
+                             CentreViewBoundaries(light_field, labels)});
+  // EPIs through the middle of the view: a consistent segmentation draws boundaries along the EPI lines. The same
+  // pictures as segmentation.overlay_epi_h.png and segmentation.overlay_epi_v.png.
   const int y = shape.height / 2;
   const int x = shape.width / 2;
-  const cv::Mat horizontal = DrawLabelBoundaries(
-      DisplayRgb8(HorizontalEpi(light_field, y, centre.v), light_field.transfer), HorizontalEpi(labels, y, centre.v));
-  const cv::Mat vertical = DrawLabelBoundaries(DisplayRgb8(VerticalEpi(light_field, x, centre.u), light_field.transfer),
-                                               VerticalEpi(labels, x, centre.u));
   section.figures.push_back({"Horizontal EPI", "row y = " + std::to_string(y) + " of the middle view row (u down)",
-                             Enlarge(horizontal, 1, stretch)});
+                             HorizontalEpiBoundaries(light_field, labels, y)});
   section.figures.push_back({"Vertical EPI",
                              "column x = " + std::to_string(x) + " of the middle view column (v across)",
-                             Enlarge(vertical, stretch, 1)});
+                             VerticalEpiBoundaries(light_field, labels, x)});
   return section;
 }
 
-report::Section RecolorSection(const RecolorFigures& recolor) {
+// The stage's pictures are display-encoded already: shown as sRGB, they are converted to 8 bits only.
+report::Section RecolorSection(const stages::RecolorStageResult& recolor) {
   report::Section section{"Recolouring", {}, {}};
-  section.figures.push_back({"Before", "centre view", recolor.before});
+  section.figures.push_back({"Before", "centre view", DisplayRgb8(recolor.before, Transfer::kSrgb)});
   section.figures.push_back(
-      {"After", std::to_string(recolor.selected_labels) + " superpixels recoloured in every view", recolor.after});
+      {"After", std::to_string(recolor.summary.at("selected_labels").size()) + " superpixels recoloured in every view",
+       DisplayRgb8(recolor.after, Transfer::kSrgb)});
   return section;
 }
 
-report::Section FocalStackSection(const FocalStackFigures& stack) {
+report::Section FocalStackSection(const FocalStackFigures& stack, Transfer transfer) {
   report::Section section{"Focal stack", {}, {}};
   for (std::size_t i = 0; i < stack.slices.size(); ++i) {
     char title[64];
     std::snprintf(title, sizeof title, "Focused at d = %+.2f", stack.disparities[i]);
-    section.figures.push_back({title, "shift-and-sum over all views", Thumbnail(stack.slices[i])});
+    section.figures.push_back(
+        {title, "shift-and-sum over all views", Thumbnail(DisplayRgb8(stack.slices[i], transfer))});
   }
   return section;
 }
@@ -131,7 +127,8 @@ report::Report BuildReport(const ReportInputs& inputs, const PipelineOptions& op
   report.sections.push_back(DepthSection(inputs));
   report.sections.push_back(SuperpixelSection(inputs));
   if (inputs.recolor != nullptr) report.sections.push_back(RecolorSection(*inputs.recolor));
-  if (inputs.focal_stack != nullptr) report.sections.push_back(FocalStackSection(*inputs.focal_stack));
+  if (!inputs.focal_stack.slices.empty())
+    report.sections.push_back(FocalStackSection(inputs.focal_stack, inputs.light_field.transfer));
   return report;
 }
 

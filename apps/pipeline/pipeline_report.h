@@ -1,23 +1,18 @@
 #pragma once
 
-#include "../report/html_report.h"
 #include "lfsp/core/light_field.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/segment/lfsp.h"
 #include "pipeline.h"
+#include "report/html_report.h"
+#include "stages/recolor_stage.h"
 #include "truth_comparison.h"
 
 namespace lfsp::pipeline {
 
-struct RecolorFigures {
-  cv::Mat before;  // centre view, 8-bit RGB
-  cv::Mat after;
-  std::size_t selected_labels = 0;
-};
-
 struct FocalStackFigures {
   std::vector<float> disparities;
-  std::vector<cv::Mat> slices;  // 8-bit RGB
+  std::vector<cv::Mat> slices;  // float, the light field's transfer
 };
 
 struct ReportInputs {
@@ -25,8 +20,8 @@ struct ReportInputs {
   const depth::DepthResult& depth;
   const segment::LfspResult& segmentation;
   const DisparityMap* ground_truth_disparity;  // may be null
-  const RecolorFigures* recolor;               // may be null
-  const FocalStackFigures* focal_stack;        // may be null
+  const stages::RecolorStageResult* recolor;   // may be null
+  FocalStackFigures focal_stack;
   const TruthComparison* truth_comparison;  // a simulated capture's decode against its ideal light field; may be null
 };
 

@@ -130,6 +130,7 @@ Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const
   const H5::DataSet dataset = file.openDataSet(dataset_name);
   const std::vector<hsize_t> dims = Dimensions(dataset);
   const std::string where = name + ": dataset " + dataset_name;
+  if (dataset.getTypeClass() != H5T_INTEGER) ThrowFileError(where, "does not hold integers");
   CheckSpatialMatch(dims, shape, where);
   Labels labels(shape);
   if (dims.size() == 4) {
@@ -256,8 +257,49 @@ Bundle ReadBundle(const fs::path& path) {
   }
 }
 
+Labels ReadLabels(const fs::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
+  H5::Exception::dontPrint();
+  if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
+  try {
+    const H5::H5File file(name, H5F_ACC_RDONLY);
+    const char* dataset_name = file.nameExists("labels")      ? "labels"
+                               : file.nameExists("GT_LABELS") ? "GT_LABELS"
+                                                              : nullptr;
+    if (dataset_name == nullptr) ThrowFileError(name, "has neither a 'labels' nor a 'GT_LABELS' dataset");
+    const std::vector<hsize_t> dims = Dimensions(file.openDataSet(dataset_name));
+    const std::string where = name + ": dataset " + dataset_name;
+    if (dims.size() != 4) ThrowFileError(where, "has shape " + DimsText(dims) + ", expected nv x nu x H x W");
+    for (const hsize_t dim : dims)
+      if (dim == 0 || dim > 65536) ThrowFileError(where, "has an implausible shape " + DimsText(dims));
+    CheckDeclaredAllocation(where, SaturatingBytes({dims[0], dims[1], dims[2], dims[3]}, sizeof(std::int32_t)),
+                            FileBytes(path));
+    const LightFieldShape shape{static_cast<int>(dims[1]), static_cast<int>(dims[0]), static_cast<int>(dims[3]),
+                                static_cast<int>(dims[2]), 1};
+    return ReadLabelsDataset(file, dataset_name, shape, name);
+  } catch (const H5::Exception& error) {
+    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+  }
+}
+
 BundleWriteOptions CompactBundleOptions(const LightField& light_field) {
   return {DecodedFromSensor(light_field) ? SampleStorage::kUint16 : SampleStorage::kFloat32, 1};
+}
+
+void RoundToStoredPrecision(LightField& light_field, SampleStorage storage) {
+  if (storage == SampleStorage::kFloat32) return;
+  const float scale = storage == SampleStorage::kUint16 ? 65535.0f : 255.0f;
+  const auto round = [scale](float* values, std::size_t count) {
+#pragma omp parallel for
+    for (std::size_t i = 0; i < count; ++i)
+      values[i] = static_cast<float>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * scale)) / scale;
+  };
+  round(light_field.data(), light_field.size());
+  // Weights are stored as 16-bit only beside 16-bit samples (else as float32).
+  if (light_field.HasWeights() && storage == SampleStorage::kUint16)
+    round(light_field.weights().data(), light_field.weights().size());
 }
 
 void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOptions& options) {

@@ -60,6 +60,14 @@ void RequireValidLabelValues(const Labels& labels, const std::string& where) {
           where, "holds label " + std::to_string(values[i]) + "; labels are -1 (unlabelled) or non-negative integers");
 }
 
+void RequireLabelsMatch(const Labels& labels, const LightFieldShape& shape, const std::string& what) {
+  const LightFieldShape& have = labels.shape();
+  if (have.nu != shape.nu || have.nv != shape.nv || have.width != shape.width || have.height != shape.height)
+    throw Error(what + ": labels are " + std::to_string(have.nv) + "x" + std::to_string(have.nu) + " views of " +
+                std::to_string(have.width) + "x" + std::to_string(have.height) + " but the light field is " +
+                ToString(shape));
+}
+
 Labels DenselyRelabelled(const Labels& labels) {
   Labels out(labels.shape());
   std::unordered_map<std::int32_t, std::int32_t> dense;

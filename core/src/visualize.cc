@@ -119,6 +119,32 @@ cv::Mat Enlarge(const cv::Mat& image, int factor_x, int factor_y) {
   return out;
 }
 
+int DefaultEpiStretch(const LightFieldShape& shape) {
+  return std::max(4, 96 / std::max(1, std::max(shape.nu, shape.nv)));
+}
+
+cv::Mat CentreViewBoundaries(const LightField& light_field, const Labels& labels) {
+  RequireLabelsMatch(labels, light_field.shape(), "segmentation picture");
+  const ViewIndex centre = light_field.shape().Centre();
+  return DrawLabelBoundaries(DisplayRgb8(light_field.View(centre), light_field.transfer), labels.View(centre));
+}
+
+cv::Mat HorizontalEpiBoundaries(const LightField& light_field, const Labels& labels, int y, int stretch) {
+  RequireLabelsMatch(labels, light_field.shape(), "segmentation picture");
+  const int v = light_field.shape().Centre().v;
+  const cv::Mat picture = DrawLabelBoundaries(DisplayRgb8(HorizontalEpi(light_field, y, v), light_field.transfer),
+                                              HorizontalEpi(labels, y, v));
+  return Enlarge(picture, 1, stretch > 0 ? stretch : DefaultEpiStretch(light_field.shape()));
+}
+
+cv::Mat VerticalEpiBoundaries(const LightField& light_field, const Labels& labels, int x, int stretch) {
+  RequireLabelsMatch(labels, light_field.shape(), "segmentation picture");
+  const int u = light_field.shape().Centre().u;
+  const cv::Mat picture =
+      DrawLabelBoundaries(DisplayRgb8(VerticalEpi(light_field, x, u), light_field.transfer), VerticalEpi(labels, x, u));
+  return Enlarge(picture, stretch > 0 ? stretch : DefaultEpiStretch(light_field.shape()), 1);
+}
+
 std::vector<cv::Mat> ViewSweepFrames(const LightField& light_field) {
   const LightFieldShape& shape = light_field.shape();
   const ViewIndex centre = shape.Centre();

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "lfsp/core/error.h"
-#include "lfsp/edit/labels_file.h"
 
 namespace lfsp::edit {
 namespace {
@@ -139,7 +138,7 @@ RecolorStats Recolor(LightField& light_field, const Labels& labels, const std::v
   const LightFieldShape& shape = light_field.shape();
   if (light_field.empty() || shape.channels != 3)
     throw Error("recolour: expected an RGB light field (3 channels), got " + ToString(shape));
-  CheckLabelsMatch(labels, shape, "recolour");
+  RequireLabelsMatch(labels, shape, "recolour");
   if (selection.empty()) throw Error("recolour: the selection is empty");
   const SelectionTable table(selection);
 

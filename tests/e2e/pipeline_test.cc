@@ -54,7 +54,9 @@ TEST_F(PipelineEndToEnd, WritesEveryIntermediateInTheProjectFormats) {
   EXPECT_EQ(segmentation.labels->shape().nu, 5);
   const Bundle recoloured = ReadBundle(Run() / "recolored.h5");
   EXPECT_EQ(recoloured.light_field.shape(), segmentation.light_field.shape());
-  EXPECT_TRUE(fs::exists(Run() / "recolor_after.png"));
+  EXPECT_TRUE(fs::exists(Run() / "recolored.after.png"));
+  EXPECT_TRUE(fs::exists(Run() / "segmentation.overlay_centre.png"));
+  EXPECT_TRUE(fs::exists(Run() / "disparity.png"));
   EXPECT_FALSE(fs::is_empty(Run() / "focal_stack"));
 }
 

@@ -11,7 +11,6 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/edit/colour_adjust.h"
-#include "lfsp/edit/labels_file.h"
 #include "lfsp/edit/selection.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
@@ -238,23 +237,23 @@ TEST(LabelsFileTest, ReadsTheLabelsDatasetAndRejectsOthers) {
   bundle.labels->at({2, 1}, 4, 5) = 11;
   WriteBundle(bundle, dir / "labels.h5");
 
-  const Labels labels = ReadLabelsFile(dir / "labels.h5");
+  const Labels labels = ReadLabels(dir / "labels.h5");
   EXPECT_EQ(labels.shape().nu, 3);
   EXPECT_EQ(labels.shape().nv, 2);
   EXPECT_EQ(labels.at({2, 1}, 4, 5), 11);
   EXPECT_EQ(labels.at({0, 0}, 0, 0), 4);
-  EXPECT_NO_THROW(CheckLabelsMatch(labels, shape, "test"));
-  EXPECT_THROW(CheckLabelsMatch(labels, LightFieldShape{2, 3, 6, 5, 3}, "test"), Error);
+  EXPECT_NO_THROW(RequireLabelsMatch(labels, shape, "test"));
+  EXPECT_THROW(RequireLabelsMatch(labels, LightFieldShape{2, 3, 6, 5, 3}, "test"), Error);
 
   try {
-    ReadLabelsFile(dir / "no_labels.h5");
+    ReadLabels(dir / "no_labels.h5");
     FAIL() << "expected an error";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("no_labels.h5"), std::string::npos) << error.what();
   }
   lfsp::testing::WriteBytes(dir / "text.h5", "not hdf5");
-  EXPECT_THROW(ReadLabelsFile(dir / "text.h5"), Error);
-  EXPECT_THROW(ReadLabelsFile(dir / "missing.h5"), Error);
+  EXPECT_THROW(ReadLabels(dir / "text.h5"), Error);
+  EXPECT_THROW(ReadLabels(dir / "missing.h5"), Error);
 }
 
 TEST(ColourAdjustTest, HsvHueRotationTurnsRedIntoGreen) {

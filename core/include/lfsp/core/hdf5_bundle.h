@@ -31,10 +31,20 @@ struct BundleWriteOptions {
 // of 1.5e-5 loses nothing measurable), else as float32, losslessly.
 BundleWriteOptions CompactBundleOptions(const LightField& light_field);
 
+// Rounds the samples (and weights, when they are stored alike) to the precision `storage` keeps, exactly as
+// WriteBundle then ReadBundle would give them back: a run that goes on in memory then computes what a run from the
+// written file computes (`lfsp pipeline` against the single commands).
+void RoundToStoredPrecision(LightField& light_field, SampleStorage storage);
+
 // Reads an lfsp bundle, or the old HCI dataset layout: lf.h5 with LF (uint8/float, nv x nu x H x W x 3) and
 // GT_DEPTH (depth per view, converted to centre-view disparity with the file's dH/focalLength/shift attributes),
 // plus a sibling labels.h5 with GT_LABELS when present.
 Bundle ReadBundle(const std::filesystem::path& path);
+
+// Reads only the per-ray labels of an HDF5 file, without its light field: dataset `labels` (an lfsp bundle, as
+// `lfsp segment` writes it) or `GT_LABELS` (the old HCI layout), nv x nu x H x W of any integer type. Throws
+// lfsp::Error naming the file if it is missing, not HDF5, has neither dataset or the wrong rank.
+Labels ReadLabels(const std::filesystem::path& path);
 
 // Writes through a temporary file renamed when complete.
 void WriteBundle(const Bundle& bundle, const std::filesystem::path& path, const BundleWriteOptions& options = {});

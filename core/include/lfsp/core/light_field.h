@@ -118,6 +118,9 @@ class Labels : public Array4D<std::int32_t> {
 // stages index by label, so only -1 and 0.. are meaningful).
 void RequireValidLabelValues(const Labels& labels, const std::string& where);
 
+// Throws lfsp::Error naming `what` unless `labels` has the light field's views and view size.
+void RequireLabelsMatch(const Labels& labels, const LightFieldShape& shape, const std::string& what);
+
 // The same segmentation with labels renumbered 0..n-1 in order of first appearance (kUnlabelled stays): scoring
 // allocates per label, so a file's sparse label values (5,000,000 in a 400 KB bundle) must not size its tables.
 Labels DenselyRelabelled(const Labels& labels);

@@ -40,4 +40,16 @@ cv::Mat DrawLabelBoundaries(const cv::Mat& rgb8, const cv::Mat& labels, cv::Vec3
 // Nearest-neighbour enlargement by an integer factor per axis (thin EPIs are unreadable at 1:1).
 cv::Mat Enlarge(const cv::Mat& image, int factor_x, int factor_y);
 
+// Pictures of a segmentation, encoded for display per the light field's transfer, with DrawLabelBoundaries: the
+// centre view; the horizontal EPI of the middle view row at image row `y` (one row per view, u down); the vertical
+// EPI of the middle view column at image column `x` (v across). EPIs are stretched across the views by `stretch`
+// (0: DefaultEpiStretch) so that a handful of views makes a readable picture. Throws lfsp::Error if the labels'
+// shape is not the light field's or the row/column is outside the views.
+cv::Mat CentreViewBoundaries(const LightField& light_field, const Labels& labels);
+cv::Mat HorizontalEpiBoundaries(const LightField& light_field, const Labels& labels, int y, int stretch = 0);
+cv::Mat VerticalEpiBoundaries(const LightField& light_field, const Labels& labels, int x, int stretch = 0);
+
+// About 96 pixels across the views, at least 4 per view.
+int DefaultEpiStretch(const LightFieldShape& shape);
+
 }  // namespace lfsp

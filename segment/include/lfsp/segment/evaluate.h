@@ -7,6 +7,7 @@
 #include "lfsp/core/light_field.h"
 #include "lfsp/segment/baselines.h"
 #include "lfsp/segment/params.h"
+#include "lfsp/segment/refocus.h"
 
 namespace lfsp::segment {
 
@@ -25,7 +26,7 @@ struct EvaluationOptions {
   bool baselines = false;      // also run and score per-view SLIC and LSC and SLIC supervoxels (row/column first)
   BaselineParams baseline;
   bool refocus = false;  // re-run LFSP on refocused light fields and report SS at each level
-  std::vector<double> refocus_levels = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5};
+  std::vector<double> refocus_levels = DefaultRefocusLevels();
   LfspParams lfsp;  // parameters for the refocus re-runs
 };
 

@@ -1,21 +1,33 @@
-#include "summary.h"
+#include "stages/summary.h"
 
 #include <fstream>
+#include <string>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 
-namespace lfsp::cli {
+namespace lfsp::stages {
+namespace {
 
-void WriteJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path) {
+void WriteText(const std::string& text, const std::filesystem::path& path) {
   AtomicOutput output(path);
   {
     std::ofstream file(output.temporary());
     if (!file) ThrowFileError(path.string(), "cannot create");
-    file << summary.dump(2) << "\n";
+    file << text << "\n";
     if (!file.flush()) ThrowFileError(path.string(), "write failed");
   }
   output.Commit();
+}
+
+}  // namespace
+
+void WriteJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path) {
+  WriteText(summary.dump(2), path);
+}
+
+void WriteJsonSummary(const nlohmann::ordered_json& summary, const std::filesystem::path& path) {
+  WriteText(summary.dump(2), path);
 }
 
 std::filesystem::path SummaryPathFor(const std::filesystem::path& output) {
@@ -26,4 +38,4 @@ std::filesystem::path SummaryPathFor(const std::filesystem::path& output) {
   return path;
 }
 
-}  // namespace lfsp::cli
+}  // namespace lfsp::stages

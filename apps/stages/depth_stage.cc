@@ -1,0 +1,45 @@
+#include "stages/depth_stage.h"
+
+#include <spdlog/spdlog.h>
+
+#include "lfsp/core/stopwatch.h"
+#include "lfsp/depth/depth_io.h"
+#include "lfsp/depth/metrics.h"
+#include "stages/summary.h"
+
+namespace lfsp::stages {
+
+DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& options,
+                               const std::filesystem::path& disparity_pfm, nlohmann::ordered_json summary) {
+  const Stopwatch stopwatch;
+  DepthStageResult result;
+  const depth::DepthResult& estimate = result.estimate = depth::EstimateDepth(bundle.light_field, options);
+  const depth::DepthOutputPaths paths = depth::OutputPathsFor(disparity_pfm);
+  depth::WriteDepthOutputs(estimate, paths);
+
+  // Outputs by name: they lie beside the summary, wherever the folder is moved (a pipeline run is built elsewhere).
+  summary["outputs"] = {{"disparity", paths.disparity.filename().string()},
+                        {"preview", paths.preview.filename().string()},
+                        {"confidence", paths.confidence.filename().string()}};
+  summary["range"] = {{"min", estimate.range.min}, {"max", estimate.range.max}, {"source", estimate.range_source}};
+  summary["parameters"] = depth::ToJson(options);
+  summary["occlusion_candidates"] = estimate.occlusion_candidates;
+  summary["noise_sigma"] = estimate.noise_sigma;
+  summary["presmooth_sigma"] = estimate.presmooth_sigma;
+  summary["excluded_ring"] = estimate.excluded_ring;
+  summary["detail_weight"] = estimate.detail_weight;
+  const std::optional<DisparityMap>& truth = bundle.disparity;
+  if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
+    const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(estimate.disparity, *truth);
+    summary["metrics_vs_input_ground_truth"] = depth::ToJson(evaluation);
+    spdlog::info("vs ground truth: MSE x100 {:.2f}, BadPix 0.07 {:.2f} %", evaluation.all.mse_x100,
+                 evaluation.all.badpix_007);
+  }
+  summary["timings_seconds"] = estimate.timings;
+  summary["timings_seconds"]["stage"] = stopwatch.Seconds();
+  WriteJsonSummary(summary, SummaryPathFor(paths.disparity));
+  result.summary = std::move(summary);
+  return result;
+}
+
+}  // namespace lfsp::stages
