@@ -29,9 +29,18 @@ void PrintError(const std::string& message) {
   std::fprintf(stderr, "lfsp: error: %s\n", line.c_str());
 }
 
+// Library messages name options by their API name ("views_pattern"); on the command line that is --views-pattern.
+std::string CommandLineOptionName(const std::string& api_name) {
+  std::string flag = "--" + api_name;
+  for (char& c : flag)
+    if (c == '_') c = '-';
+  return flag;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  lfsp::SetOptionNamer(CommandLineOptionName);
   CLI::App app{"lfsp: light-field superpixels for lenslet (Lytro) cameras: decode, depth, segmentation, editing",
                "lfsp"};
   app.set_version_flag("--version", std::string("lfsp ") + LFSP_VERSION);

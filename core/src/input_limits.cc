@@ -22,21 +22,21 @@ void SetMemoryLimit(std::optional<std::uint64_t> bytes) {
 void CheckDeclaredAllocation(const std::string& where, std::uint64_t declared_bytes, std::uint64_t file_bytes) {
   if (const std::uint64_t cap = g_explicit_cap; cap != 0) {
     if (declared_bytes > cap)
-      ThrowFileError(where, "declares " + Megabytes(declared_bytes) + " of samples, above the --max-memory limit of " +
-                                Megabytes(cap));
+      ThrowFileError(where, "declares " + Megabytes(declared_bytes) + " of samples, above the " +
+                                OptionName("max_memory") + " limit of " + Megabytes(cap));
     return;
   }
   if (declared_bytes > kDefaultMemoryCapBytes)
     ThrowFileError(where, "declares " + Megabytes(declared_bytes) + " of samples, above the limit of " +
-                              Megabytes(kDefaultMemoryCapBytes) + " (raise it with --max-memory GIB)");
+                              Megabytes(kDefaultMemoryCapBytes) + " (raise it with " + OptionName("max_memory") + ")");
   const std::uint64_t plausible = file_bytes > (std::numeric_limits<std::uint64_t>::max() - kSlackBytes) / kMaxExpansion
                                       ? std::numeric_limits<std::uint64_t>::max()
                                       : kSlackBytes + kMaxExpansion * file_bytes;
   if (declared_bytes > plausible)
     ThrowFileError(where, "declares " + Megabytes(declared_bytes) + " of samples but the file holds only " +
                               std::to_string(file_bytes) +
-                              " bytes: the declared size is not plausible (if the data is genuine, pass --max-memory "
-                              "GIB to trust it)");
+                              " bytes: the declared size is not plausible (if the data is genuine, raise " +
+                              OptionName("max_memory") + " to trust it)");
 }
 
 std::uint64_t FileBytes(const std::filesystem::path& path) {

@@ -82,7 +82,7 @@ ViewChoice ChooseViews(const LightField& light_field, int requested) {
   if (requested > 0) {
     CroppedShape(shape, requested);  // throws with the reason if it cannot be taken
     choice.n = requested;
-    choice.reason = "--views " + std::to_string(requested);
+    choice.reason = OptionName("views") + " " + std::to_string(requested);
   } else if (!light_field.HasWeights()) {
     choice.n = choice.available;
     choice.reason = "all views (the light field has no weights)";
@@ -96,8 +96,8 @@ ViewChoice ChooseViews(const LightField& light_field, int requested) {
     }
     choice.reason = "central " + std::to_string(choice.n) + "x" + std::to_string(choice.n) + " of " +
                     std::to_string(choice.available) + "x" + std::to_string(choice.available) +
-                    ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) +
-                    " (--views N to override)";
+                    ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) + " (" +
+                    OptionName("views") + " to override)";
   }
   if (light_field.HasWeights()) choice.least_weight = LeastWeight(light_field, 0, (choice.n - 1) / 2);
   return choice;

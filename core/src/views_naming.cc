@@ -112,7 +112,7 @@ std::optional<ViewsLayout> GridLayout(const fs::path& folder, const std::string&
   for (const auto& [prefix, members] : groups)
     if (prefix != largest->first && members.size() == largest->second.size())
       ThrowFileError(folder.string(), naming + " naming: two families of views, '" + largest->first + "...' and '" +
-                                          prefix + "...'; choose one with --views-pattern");
+                                          prefix + "...'; choose one with " + OptionName("views_pattern"));
   const std::vector<NamedView>& views = largest->second;
   const std::string prefix = largest->first;
   if (views.size() < 2) return std::nullopt;
@@ -177,7 +177,7 @@ CompiledPattern CompilePattern(const std::string& pattern) {
     }
   }
   if (compiled.row_group == 0 || compiled.column_group == 0)
-    throw Error("--views-pattern '" + pattern + "': needs both {row} and {col}, e.g. '{row}_{col}.png'");
+    throw Error(OptionName("views_pattern") + " '" + pattern + "': needs both {row} and {col}, e.g. '{row}_{col}.png'");
   compiled.regex = std::regex(regex);
   return compiled;
 }
@@ -200,15 +200,18 @@ ViewsLayout FindViewsLayout(const fs::path& folder, const std::string& pattern) 
   std::optional<ViewsLayout> layout;
   if (!pattern.empty()) {
     const CompiledPattern compiled = CompilePattern(pattern);
-    layout = GridLayout(folder, "--views-pattern '" + pattern + "'", [&](const fs::path& path, std::string& prefix) {
-      std::smatch match;
-      const std::string name = path.filename().string();
-      if (!std::regex_match(name, match, compiled.regex)) return std::optional<NamedView>();
-      prefix.clear();
-      return std::optional<NamedView>(
-          {path, std::stol(match[compiled.row_group].str()), std::stol(match[compiled.column_group].str())});
-    });
-    if (!layout) ThrowFileError(folder.string(), "no files match --views-pattern '" + pattern + "' as a grid of views");
+    layout = GridLayout(
+        folder, OptionName("views_pattern") + " '" + pattern + "'", [&](const fs::path& path, std::string& prefix) {
+          std::smatch match;
+          const std::string name = path.filename().string();
+          if (!std::regex_match(name, match, compiled.regex)) return std::optional<NamedView>();
+          prefix.clear();
+          return std::optional<NamedView>(
+              {path, std::stol(match[compiled.row_group].str()), std::stol(match[compiled.column_group].str())});
+        });
+    if (!layout)
+      ThrowFileError(folder.string(),
+                     "no files match " + OptionName("views_pattern") + " '" + pattern + "' as a grid of views");
     return *layout;
   }
   if (const std::map<int, fs::path> hci = FindHciFiles(folder, "input"); !hci.empty()) return HciLayout(folder, hci);
@@ -241,7 +244,8 @@ ViewsLayout FindViewsLayout(const fs::path& folder, const std::string& pattern) 
   if (layout) return *layout;
   ThrowFileError(folder.string(),
                  "folder holds no light-field views: expected HCI input_Cam000.png.., <row>_<col>.png (any prefix), "
-                 "LFToolbox <name>_<index>_<a>_<b>.png, or name the files with --views-pattern '{row}_{col}.png'");
+                 "LFToolbox <name>_<index>_<a>_<b>.png, or name the files with " +
+                     OptionName("views_pattern") + " '{row}_{col}.png'");
 }
 
 }  // namespace lfsp

@@ -126,11 +126,11 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
   input.metadata = input.has_camera_metadata ? NominalMetadata(options.camera, width, height, name) : LytroMetadata{};
   if (!input.has_camera_metadata) {
     input.metadata.source = name;
-    input.metadata.schema = "none (plain raw image without --camera)";
+    input.metadata.schema = "none (plain raw image without " + OptionName("camera") + ")";
     input.metadata.raw_format = RawFormat{};
     input.metadata.raw_format->width = width;
     input.metadata.raw_format->height = height;
-    input.metadata.mla_problem = "no camera given (--camera f01|illum)";
+    input.metadata.mla_problem = "no camera given (" + OptionName("camera") + " f01|illum)";
   }
   RawFormat& format = *input.metadata.raw_format;
   if (options.bayer) format.mosaic = *options.bayer;

@@ -178,7 +178,8 @@ void CheckInput(const LightField& light_field, const std::vector<float>& dispari
 }  // namespace
 
 std::vector<float> LabelDisparities(float min, float max, int count) {
-  if (count < 3) throw Error("depth: --labels must be at least 3 (got " + std::to_string(count) + ")");
+  if (count < 3)
+    throw Error("depth: " + OptionName("labels") + " must be at least 3 (got " + std::to_string(count) + ")");
   if (!(max > min)) {
     throw Error("depth: disparity range is empty (min " + std::to_string(min) + ", max " + std::to_string(max) + ")");
   }

@@ -147,7 +147,8 @@ RangeEstimate EstimateDisparityRange(const LightField& light_field) {
   estimate.pixels_used = static_cast<int>(winners.size());
   if (winners.size() < kMinUsedFraction * static_cast<double>(size.area()) || winners.size() < 20)
     throw Error("disparity range: the views are too flat to measure their disparity (" +
-                std::to_string(winners.size()) + " usable pixels); give --dmin/--dmax");
+                std::to_string(winners.size()) + " usable pixels); give " + OptionName("dmin") + "/" +
+                OptionName("dmax"));
   estimate.measured = {static_cast<float>(Quantile(winners, kTail)),
                        static_cast<float>(Quantile(winners, 1.0 - kTail))};
   const float pad = 0.1f * (estimate.measured.max - estimate.measured.min) + 0.1f;

@@ -19,11 +19,13 @@ ColourSpace ColourSpaceFromString(const std::string& name) {
 
 void ValidateAdjustment(const ColourAdjustment& adjustment) {
   if (!std::isfinite(adjustment.hue_degrees))
-    throw Error("--hue: expected a finite angle in degrees, got " + std::to_string(adjustment.hue_degrees));
+    throw Error(OptionName("hue") + ": expected a finite angle in degrees, got " +
+                std::to_string(adjustment.hue_degrees));
   if (!(adjustment.saturation >= 0.0f) || !std::isfinite(adjustment.saturation))
-    throw Error("--saturation: expected a finite factor >= 0, got " + std::to_string(adjustment.saturation));
+    throw Error(OptionName("saturation") + ": expected a finite factor >= 0, got " +
+                std::to_string(adjustment.saturation));
   if (!(adjustment.value >= 0.0f) || !std::isfinite(adjustment.value))
-    throw Error("--value: expected a finite factor >= 0, got " + std::to_string(adjustment.value));
+    throw Error(OptionName("value") + ": expected a finite factor >= 0, got " + std::to_string(adjustment.value));
 }
 
 namespace {

@@ -119,7 +119,8 @@ ViewCounts RecolorView(float* samples, const cv::Mat& strength, const ColourAdju
 void CheckOptions(const RecolorOptions& options) {
   ValidateAdjustment(options.adjustment);
   if (!(options.feather_px >= 0.0f) || !std::isfinite(options.feather_px))
-    throw Error("--feather: expected a finite width >= 0 pixels, got " + std::to_string(options.feather_px));
+    throw Error(OptionName("feather") + ": expected a finite width >= 0 pixels, got " +
+                std::to_string(options.feather_px));
 }
 
 }  // namespace

@@ -26,8 +26,9 @@ void CheckLabels(const Labels& labels) {
 std::vector<std::int32_t> SelectLabelIds(const Labels& labels, const std::vector<std::int32_t>& ids) {
   CheckLabels(labels);
   std::vector<std::int32_t> selection = SortedUnique(ids);
-  if (selection.empty()) throw Error("--label-ids: no label id given");
-  if (selection.front() < 0) throw Error("--label-ids: label ids are >= 0, got " + std::to_string(selection.front()));
+  if (selection.empty()) throw Error(OptionName("label_ids") + ": no label id given");
+  if (selection.front() < 0)
+    throw Error(OptionName("label_ids") + ": label ids are >= 0, got " + std::to_string(selection.front()));
   std::vector<bool> present(selection.size(), false);
   const std::int32_t* data = labels.data();
   const std::size_t count = labels.size();
@@ -36,7 +37,8 @@ std::vector<std::int32_t> SelectLabelIds(const Labels& labels, const std::vector
     if (it != selection.end() && *it == data[i]) present[static_cast<std::size_t>(it - selection.begin())] = true;
   }
   for (std::size_t k = 0; k < selection.size(); ++k)
-    if (!present[k]) throw Error("--label-ids: label " + std::to_string(selection[k]) + " occurs in no ray");
+    if (!present[k])
+      throw Error(OptionName("label_ids") + ": label " + std::to_string(selection[k]) + " occurs in no ray");
   return selection;
 }
 
@@ -58,19 +60,19 @@ cv::Point ParseViewPoint(const std::string& text, const std::string& option) {
 void RequirePointsInside(const std::vector<cv::Point>& points, int width, int height) {
   for (const cv::Point& point : points)
     if (point.x < 0 || point.y < 0 || point.x >= width || point.y >= height)
-      throw Error("--at " + std::to_string(point.x) + "," + std::to_string(point.y) + ": outside the centre view (" +
-                  std::to_string(width) + "x" + std::to_string(height) + ")");
+      throw Error(OptionName("at") + " " + std::to_string(point.x) + "," + std::to_string(point.y) +
+                  ": outside the centre view (" + std::to_string(width) + "x" + std::to_string(height) + ")");
 }
 
 std::vector<std::int32_t> SelectAtPoints(const Labels& labels, const std::vector<cv::Point>& points) {
   CheckLabels(labels);
-  if (points.empty()) throw Error("--at: no point given");
+  if (points.empty()) throw Error(OptionName("at") + ": no point given");
   const LightFieldShape& shape = labels.shape();
   const ViewIndex centre = shape.Centre();
   RequirePointsInside(points, shape.width, shape.height);
   std::vector<std::int32_t> selection;
   for (const cv::Point& point : points) {
-    const std::string where = "--at " + std::to_string(point.x) + "," + std::to_string(point.y);
+    const std::string where = OptionName("at") + " " + std::to_string(point.x) + "," + std::to_string(point.y);
     const std::int32_t label = labels.at(centre, point.y, point.x);
     if (label < 0) throw Error(where + ": the centre-view ray there is unlabelled");
     selection.push_back(label);
@@ -97,7 +99,7 @@ cv::Mat BinaryMask(const cv::Mat& mask) {
       threshold = 0.5;
       break;
     default:
-      throw Error("--mask: unsupported mask sample type");
+      throw Error(OptionName("mask") + ": unsupported mask sample type");
   }
   cv::Mat first64;
   first.convertTo(first64, CV_64F);
@@ -110,10 +112,10 @@ std::vector<std::int32_t> SelectByMask(const Labels& labels, const cv::Mat& mask
   CheckLabels(labels);
   const LightFieldShape& shape = labels.shape();
   if (mask.empty() || mask.cols != shape.width || mask.rows != shape.height)
-    throw Error("--mask: the mask is " + std::to_string(mask.cols) + "x" + std::to_string(mask.rows) +
+    throw Error(OptionName("mask") + ": the mask is " + std::to_string(mask.cols) + "x" + std::to_string(mask.rows) +
                 " but the centre view is " + std::to_string(shape.width) + "x" + std::to_string(shape.height));
   if (!(min_fraction >= 0.0 && min_fraction < 1.0))
-    throw Error("--mask: the area fraction must be in [0, 1), got " + std::to_string(min_fraction));
+    throw Error(OptionName("mask") + ": the area fraction must be in [0, 1), got " + std::to_string(min_fraction));
   const cv::Mat inside = BinaryMask(mask);
   const cv::Mat centre = labels.View(shape.Centre());
 
@@ -136,8 +138,8 @@ std::vector<std::int32_t> SelectByMask(const Labels& labels, const cv::Mat& mask
   for (const auto& [label, area] : areas)
     if (static_cast<double>(area.inside) > min_fraction * static_cast<double>(area.total)) selection.push_back(label);
   if (selection.empty())
-    throw Error("--mask: no centre-view superpixel has more than " + std::to_string(min_fraction * 100.0) +
-                " % of its area inside the mask");
+    throw Error(OptionName("mask") + ": no centre-view superpixel has more than " +
+                std::to_string(min_fraction * 100.0) + " % of its area inside the mask");
   return SortedUnique(selection);
 }
 

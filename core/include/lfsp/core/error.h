@@ -18,4 +18,12 @@ std::string FileMessage(const std::string& path, const std::string& problem);
 
 [[noreturn]] void ThrowFileError(const std::string& path, const std::string& problem);
 
+// Libraries know no command line: a message about an option names it by its API name (the field of the options
+// struct, e.g. "views_pattern") through OptionName, and each front end says how its users spell it. By default the
+// name is kept as it is (what a library or Python caller passes); the CLI installs a namer that gives
+// "--views-pattern".
+std::string OptionName(const std::string& api_name);
+using OptionNamer = std::string (*)(const std::string& api_name);
+void SetOptionNamer(OptionNamer namer);
+
 }  // namespace lfsp
