@@ -52,15 +52,21 @@ TEST(Kill, PipelineKilledAtSeveralPointsThenRerun) {
   ExpectConsistentRun(run);
   const std::string first = ReadBytes(run / "summary.json");
 
-  // The reruns segment differently, so a set mixing old and new files would show in the sizes.
+  // The reruns segment differently, so a set mixing old and new files would show in the sizes. They are killed at
+  // fractions of the first run's wall time, so that most kills land inside a run on a fast machine and a slow one.
   std::vector<std::string> rerun = arguments;
   rerun.insert(rerun.end(), {"--size", "12"});
+  const double wall = nlohmann::json::parse(first)["wall_seconds"].get<double>();
   int killed = 0;
-  for (const double seconds : {0.15, 0.5, 0.9, 1.3}) {
-    SCOPED_TRACE(seconds);
-    if (RunLfspKilledAfter(rerun, seconds)) ++killed;
-    // Whatever was killed, the previous set is whole and unchanged.
-    EXPECT_EQ(ReadBytes(run / "summary.json"), first);
+  std::string current = first;
+  for (const double fraction : {0.1, 0.3, 0.5, 0.7}) {
+    SCOPED_TRACE(fraction);
+    if (RunLfspKilledAfter(rerun, fraction * wall)) {
+      ++killed;
+      EXPECT_EQ(ReadBytes(run / "summary.json"), current) << "a killed run must leave the previous set as it was";
+    } else {
+      current = ReadBytes(run / "summary.json");  // finished before the kill: its own set replaced the previous one
+    }
     ExpectConsistentRun(run);
   }
   EXPECT_GE(killed, 2) << "the runs finished before they could be killed";
