@@ -11,7 +11,7 @@
 
 #include "bench_case.h"
 #include "lfsp/core/load.h"
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 #include "lfsp/edit/image_measures.h"
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/refocus.h"

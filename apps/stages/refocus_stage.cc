@@ -8,7 +8,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/core/visualize.h"
 #include "lfsp/edit/image_measures.h"

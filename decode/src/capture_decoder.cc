@@ -63,10 +63,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   const RawInput input = OpenRawInput(capture_path, options.plain);
   if (input.white_image)
     throw Error(capture_path.string() +
-                ": this is a white (modulation) image, not a capture; index it with `lfsp whites build` instead");
+                ": this is a white (modulation) image, not a capture; it belongs in a white-image folder");
   if (!input.has_camera_metadata)
-    throw Error(capture_path.string() +
-                ": a plain raw image needs --camera f01|illum to decode (sensor layout, optics and colour)");
+    throw Error(capture_path.string() + ": a plain raw image needs " + OptionName("camera") +
+                " f01|illum to decode (sensor layout, optics and colour)");
   const LytroMetadata& metadata = input.metadata;
   const double read_seconds = step.Lap();
   Progress progress("decode", 3);  // white image, grid, decode; drawn only on a terminal
@@ -77,7 +77,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   if (!options.white_images.empty() && !std::filesystem::is_directory(white_dir))
     throw Error(white_dir.string() + ": white-image folder does not exist");
   std::optional<WhiteSource> white;
-  std::string estimate_why = "--no-white-image";
+  std::string estimate_why = OptionName("no_white_image");
   if (IsPlainRawImagePath(capture_path)) {
     estimate_why = "a plain raw image has no serial, zoom or focus to match a white image by";
   } else if (!options.no_white_image) {

@@ -248,7 +248,7 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
       }
       for (const ViewPlan& plan : plans) {
         for (int l = 0; l < labels; ++l) {
-          // DESIGN.md: the centre pixel (x, y) at disparity d is seen in view (u, v) at (x - du*d, y - dv*d).
+          // docs/DESIGN.md: the centre pixel (x, y) at disparity d is seen in view (u, v) at (x - du*d, y - dv*d).
           const float d = disparities[static_cast<std::size_t>(l)];
           const float sx = -plan.du * d;
           const float sy = -plan.dv * d;

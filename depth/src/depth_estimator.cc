@@ -51,8 +51,9 @@ DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthO
     from = "estimated from the views";
     spdlog::info(
         "disparity range {:.2f} .. {:.2f} px per view step estimated from the views (coarse sweep over "
-        "+-{:.1f}: {} pixels measured {:.2f} .. {:.2f}); --dmin/--dmax override it",
-        range->min, range->max, estimate.searched, estimate.pixels_used, estimate.measured.min, estimate.measured.max);
+        "+-{:.1f}: {} pixels measured {:.2f} .. {:.2f}); {}/{} override it",
+        range->min, range->max, estimate.searched, estimate.pixels_used, estimate.measured.min, estimate.measured.max,
+        OptionName("dmin"), OptionName("dmax"));
   }
   if (!std::isfinite(range->min) || !std::isfinite(range->max) || !(range->max > range->min)) {
     throw Error("depth: invalid disparity range [" + std::to_string(range->min) + ", " + std::to_string(range->max) +

@@ -78,7 +78,7 @@ RangeEstimate EstimateDisparityRange(const LightField& light_field) {
       // half-patch choice).
       std::vector<cv::Mat> per_view;
       for (const SweepView& view : views) {
-        // The centre pixel x at disparity d is seen in view (du, dv) at x - du * d (DESIGN.md convention).
+        // The centre pixel x at disparity d is seen in view (du, dv) at x - du * d (docs/DESIGN.md convention).
         const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -view.du * d * scale, 0, 1, -view.dv * d * scale);
         cv::warpAffine(view.grey, warped, shift, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
         cv::absdiff(warped, centre, difference);

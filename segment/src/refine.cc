@@ -180,7 +180,7 @@ class Refiner {
       for (int a = -1; a <= 1; ++a) {
         const int nu = u + a;
         if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
-        // Moving one view step along +u shifts a point by -d (DESIGN.md convention).
+        // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
         const Block block{ViewLabels(nv * shape_.nu + nu), x - a * rounded, y - b * rounded};
         AddBilinear(block.labels, x - a * d, y - b * d, k, angular, angular_valid);
         blocks[static_cast<std::size_t>(block_count++)] = block;

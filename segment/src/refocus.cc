@@ -1,6 +1,6 @@
 #include "lfsp/segment/refocus.h"
 
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 
 namespace lfsp::segment {
 

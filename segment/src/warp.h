@@ -5,7 +5,7 @@
 
 namespace lfsp::segment {
 
-// Forward projection of centre-view samples into the view at offset (du, dv) = (u - uc, v - vc), DESIGN.md
+// Forward projection of centre-view samples into the view at offset (du, dv) = (u - uc, v - vc), docs/DESIGN.md
 // convention: centre pixel (x0, y0) with disparity d lands at (x0 - du d, y0 - dv d), rounded to the nearest pixel.
 // Where several land on one pixel the largest disparity (front-most) wins. Pixels nothing lands on keep label -1 and
 // depth -infinity. `centre_labels` and `centre_disparity` are width x height, row-major.

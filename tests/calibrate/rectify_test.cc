@@ -52,7 +52,7 @@ double WorstLineResidual(const CaptureCorners& corners) {
 }
 
 // For every corner, fit (x, y)(u, v) = (x0 - (u - uc) d, y0 - (v - vc) d) with one disparity d over all views (the
-// DESIGN.md convention); returns the RMS residual over all corners and views.
+// docs/DESIGN.md convention); returns the RMS residual over all corners and views.
 double DisparityShiftResidual(const CaptureCorners& corners) {
   const ViewIndex centre = corners.shape.Centre();
   double sum2 = 0;

@@ -1,6 +1,6 @@
 // The HCI benchmark scene loads as 9x9x512x512x3 and its ground-truth PFM is read the right way up and with the
 // right sign: warping views into the centre with it gives a small photometric error, and a clearly larger one with
-// the sign flipped or the map upside down (DESIGN.md conventions, checked on real data).
+// the sign flipped or the map upside down (docs/DESIGN.md conventions, checked on real data).
 
 #include <gtest/gtest.h>
 

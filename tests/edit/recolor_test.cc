@@ -101,7 +101,7 @@ Labels GridSuperpixels(const simulate::RenderedLightField& scene, int cell) {
         for (int x = 0; x < shape.width; ++x) {
           const int object = scene.labels.at({u, v}, y, x);
           const float d = disparity.at(y, x);
-          // Where this ray's surface point appears in the centre view (inverse of the DESIGN.md projection).
+          // Where this ray's surface point appears in the centre view (inverse of the docs/DESIGN.md projection).
           const float cx = static_cast<float>(x) + static_cast<float>(u - centre.u) * d;
           const float cy = static_cast<float>(y) + static_cast<float>(v - centre.v) * d;
           const int gx = static_cast<int>(std::floor(cx / static_cast<float>(cell))) + 10;

@@ -1,4 +1,4 @@
-// The light-field shear of core (lfsp/core/refocus.h): sign convention, round trips, labels, weights.
+// The light-field shear of core (lfsp/core/shear.h): sign convention, round trips, labels, weights.
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "lfsp/core/error.h"
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 #include "lfsp/edit/image_measures.h"
 #include "synthetic_light_field.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 
 // Analytic light fields for the edit tests: textured fronto-parallel planes whose every ray is known exactly, so
-// refocusing and shearing can be checked against closed-form values (DESIGN.md disparity convention).
+// refocusing and shearing can be checked against closed-form values (docs/DESIGN.md disparity convention).
 
 #include <cmath>
 #include <numbers>

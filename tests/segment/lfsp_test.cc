@@ -101,7 +101,7 @@ TEST(Lfsp, MoreViewConsistentThanPerViewSlicWithComparableBoundaries) {
 }
 
 // A hand-made light field: a textured background plane at disparity -1 and a textured square at +1.5 in front of it,
-// rendered by shifting (the DESIGN.md convention), with the object label of every ray.
+// rendered by shifting (the docs/DESIGN.md convention), with the object label of every ray.
 struct ShiftScene {
   LightField light_field;
   Labels labels;

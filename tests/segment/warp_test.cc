@@ -1,6 +1,6 @@
 // Unit tests of segment/src/warp.h (issue 14 item 5): ForwardWarp, the projection of centre-view labels into a side
 // view along their disparity (front-most wins), and FillHoles, which fills what nothing lands on from the background
-// side of the epipolar line. Inputs are a few hand-placed pixels whose landing spots follow from the DESIGN.md
+// side of the epipolar line. Inputs are a few hand-placed pixels whose landing spots follow from the docs/DESIGN.md
 // convention (core/include/lfsp/core/conventions.h): (x0, y0) with disparity d lands at (x0 - du d, y0 - dv d).
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // The lenslet-camera ray model of Dansereau, Pizarro and Williams (CVPR 2013, "DPW").
 //
 // A sample index n = (i, j, k, l, 1) of a decoded light field, with i, j the pixel column and row inside a view and
-// k, l the view column and row (x, y, u, v in DESIGN.md; all 0-based), maps to a ray phi = (s, t, u, v, 1) = H n in a
+// k, l the view column and row (x, y, u, v in docs/DESIGN.md; all 0-based), maps to a ray phi = (s, t, u, v, 1) = H n in a
 // relative two-plane parameterisation with plane separation 1 m: the ray leaves (s, t, 0) in the camera frame
 // (x right, y down, z forward, metres) with direction (u, v, 1).
 //

@@ -1,6 +1,6 @@
 #pragma once
 
-// The index and disparity conventions of DESIGN.md, as named helpers, so no stage re-derives them.
+// The index and disparity conventions of docs/DESIGN.md, as named helpers, so no stage re-derives them.
 //   u: angular column (horizontal view index), v: angular row; x: pixel column, y: pixel row.
 //   Views are numbered row-major: cam = v * nu + u.  Centre view (uc, vc) = ((nu-1)/2, (nv-1)/2).
 //   A centre-view pixel (x, y) with disparity d appears in view (u, v) at (x - (u-uc)*d, y - (v-vc)*d).

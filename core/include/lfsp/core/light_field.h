@@ -125,7 +125,7 @@ void RequireLabelsMatch(const Labels& labels, const LightFieldShape& shape, cons
 // allocates per label, so a file's sparse label values (5,000,000 in a 400 KB bundle) must not size its tables.
 Labels DenselyRelabelled(const Labels& labels);
 
-// Centre-view disparity, float32 height x width, pixels per view step (DESIGN.md convention).
+// Centre-view disparity, float32 height x width, pixels per view step (docs/DESIGN.md convention).
 class DisparityMap {
  public:
   DisparityMap() = default;

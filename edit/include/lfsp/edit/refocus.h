@@ -1,13 +1,13 @@
 #pragma once
 
 // Shift-and-sum refocusing: focal stacks and all-in-focus images (the sheared light field itself, the "refocus
-// level" operation, is in lfsp/core/refocus.h).
+// level" operation, is in lfsp/core/shear.h).
 
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "lfsp/core/light_field.h"
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 
 namespace lfsp::edit {
 

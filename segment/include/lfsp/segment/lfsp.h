@@ -34,7 +34,7 @@ struct LfspResult {
 // Segments the light field into light-field superpixels (Algorithm 1): SLIC of the centre view with colour, position
 // and disparity; a slanted plane per superpixel; projection of every superpixel into all views (occlusion order by
 // disparity, disoccluded rays filled from the background side); then the energy of Eq. 3 minimised by
-// block-coordinate descent over boundary rays. `disparity` is the centre-view disparity (DESIGN.md convention).
+// block-coordinate descent over boundary rays. `disparity` is the centre-view disparity (docs/DESIGN.md convention).
 // Throws lfsp::Error if the sizes disagree or a parameter is out of range.
 LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& disparity,
                              const LfspParams& params = {});

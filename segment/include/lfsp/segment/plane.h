@@ -2,7 +2,7 @@
 
 namespace lfsp::segment {
 
-// A slanted disparity plane of one superpixel, in centre-view pixel coordinates (DESIGN.md disparity convention):
+// A slanted disparity plane of one superpixel, in centre-view pixel coordinates (docs/DESIGN.md disparity convention):
 // d(x0, y0) = a x0 + b y0 + c.
 struct Plane {
   double a = 0.0;

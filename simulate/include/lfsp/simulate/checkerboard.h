@@ -5,7 +5,7 @@
 // truth.
 //
 // Ray model: a sample index n = (i, j, k, l, 1), with i, j the pixel column and row inside a view and k, l the view
-// column and row (u, v in DESIGN.md), maps through a 5x5 matrix H to a ray (s, t, u, v, 1) = H n in a relative
+// column and row (u, v in docs/DESIGN.md), maps through a 5x5 matrix H to a ray (s, t, u, v, 1) = H n in a relative
 // two-plane parameterisation (metres; plane separation 1 m): the ray leaves the point (s, t, 0) of the camera frame
 // with direction (u, v, 1) (x right, y down, z forward). Radial distortion with decentring then bends the direction
 // only:  d = (1 + k1 r^2 + k2 r^4 + k3 r^6) * ((u, v) - b) + b,  r = |(u, v) - b|,

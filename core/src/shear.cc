@@ -1,4 +1,4 @@
-#include "lfsp/core/refocus.h"
+#include "lfsp/core/shear.h"
 
 #include <algorithm>
 #include <array>

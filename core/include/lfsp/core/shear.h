@@ -1,10 +1,11 @@
 #pragma once
 
-// Shearing a light field: the "refocus level" operation of the LFSP paper's refocus sweep (Section V-A.5).
+// Shearing a light field: what refocusing does to the views, and the operation behind the LFSP paper's refocus sweep
+// (Section V-A.5), whose refocus level L is a shear by -L (segment::RefocusLightField): disparities grow by L there.
 //
 // Shearing by s translates every view (u, v) by ((u-uc)*s, (v-vc)*s):
 //   out(u, v)(x, y) = in(u, v)(x - (u-uc)*s, y - (v-vc)*s).
-// With the DESIGN.md convention (centre pixel (x, y) at disparity d appears in view (u, v) at
+// With the docs/DESIGN.md convention (centre pixel (x, y) at disparity d appears in view (u, v) at
 // (x - (u-uc)*d, y - (v-vc)*d)), a scene point at disparity s becomes aligned across views, and every disparity
 // decreases by s. Shearing by -s undoes a shear by s (up to interpolation error and the lost borders).
 
