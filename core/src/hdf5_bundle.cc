@@ -204,14 +204,20 @@ H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compr
   return properties;
 }
 
-}  // namespace
-
-Bundle ReadBundle(const fs::path& path) {
+// Refuses a path that is not an HDF5 file with a one-line error, before the HDF5 library would print its own.
+void RequireHdf5File(const fs::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
   H5::Exception::dontPrint();
   if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
+}
+
+}  // namespace
+
+Bundle ReadBundle(const fs::path& path) {
+  const std::string name = path.string();
+  RequireHdf5File(path);
   try {
     const H5::H5File file(name, H5F_ACC_RDONLY);
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
@@ -246,7 +252,8 @@ Bundle ReadBundle(const fs::path& path) {
 
     // Old HCI layout: ground-truth labels live in a sibling labels.h5.
     const fs::path sibling_labels = path.parent_path() / "labels.h5";
-    if (!bundle.labels && fs::exists(sibling_labels, ec) && sibling_labels.filename() != path.filename()) {
+    std::error_code exists_error;
+    if (!bundle.labels && fs::exists(sibling_labels, exists_error) && sibling_labels.filename() != path.filename()) {
       const H5::H5File labels_file(sibling_labels.string(), H5F_ACC_RDONLY);
       if (labels_file.nameExists("GT_LABELS"))
         bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", shape, sibling_labels.string());
@@ -259,10 +266,7 @@ Bundle ReadBundle(const fs::path& path) {
 
 Labels ReadLabels(const fs::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
-  H5::Exception::dontPrint();
-  if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
+  RequireHdf5File(path);
   try {
     const H5::H5File file(name, H5F_ACC_RDONLY);
     const char* dataset_name = file.nameExists("labels")      ? "labels"

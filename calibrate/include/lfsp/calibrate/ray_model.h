@@ -3,9 +3,9 @@
 // The lenslet-camera ray model of Dansereau, Pizarro and Williams (CVPR 2013, "DPW").
 //
 // A sample index n = (i, j, k, l, 1) of a decoded light field, with i, j the pixel column and row inside a view and
-// k, l the view column and row (x, y, u, v in docs/DESIGN.md; all 0-based), maps to a ray phi = (s, t, u, v, 1) = H n in a
-// relative two-plane parameterisation with plane separation 1 m: the ray leaves (s, t, 0) in the camera frame
-// (x right, y down, z forward, metres) with direction (u, v, 1).
+// k, l the view column and row (x, y, u, v in docs/DESIGN.md; all 0-based), maps to a ray phi = (s, t, u, v, 1) = H n
+// in a relative two-plane parameterisation with plane separation 1 m: the ray leaves (s, t, 0) in the camera frame (x
+// right, y down, z forward, metres) with direction (u, v, 1).
 //
 // H has eight slopes: s = H11 i + H13 k, t = H22 j + H24 l, u = H31 i + H33 k, v = H42 j + H44 l, plus offsets
 // H15, H25, H35, H45 that are fixed by recentring: the centre sample ((W-1)/2, (H-1)/2, (nu-1)/2, (nv-1)/2) maps

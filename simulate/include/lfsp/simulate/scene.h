@@ -13,8 +13,8 @@ namespace lfsp::simulate {
 
 // Scenes live in "disparity space": a surface point is given by where it appears in the centre view (normalised
 // image coordinates, x and y in [0, 1] across the width and height) and by its disparity d in pixels per view step
-// (docs/DESIGN.md convention: centre pixel (x, y) appears in view (u, v) at (x - (u-uc) d, y - (v-vc) d); positive d is in
-// front of the focal plane). A pinhole camera grid maps 3D space to (x, y, d) projectively, so 3D planes are exactly
+// (docs/DESIGN.md convention: centre pixel (x, y) appears in view (u, v) at (x - (u-uc) d, y - (v-vc) d); positive d is
+// in front of the focal plane). A pinhole camera grid maps 3D space to (x, y, d) projectively, so 3D planes are exactly
 // the surfaces with d affine in (x, y), 3D rays are straight lines in (x, y, d), and ground truth is analytic.
 // Lengths (disc radii, bar widths) are fractions of min(width, height) so round things stay round.
 
