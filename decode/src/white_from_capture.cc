@@ -19,6 +19,7 @@
 
 #include "bayer_preprocess.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/ordered_reduction.h"
 #include "lfsp/decode/lenslet_decoder.h"
 
 namespace lfsp::decode {
@@ -183,28 +184,32 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
   // the same everywhere, so there one tile would do slightly better.)
   const int tiles = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(lenses) / 2000.0)), 1, 5);
 
-  // 1. Accumulate every usable lens, per thread, then merge.
-  ProfileAccumulator total(bins, tiles);
-  long used = 0;
-#pragma omp parallel
-  {
-    ProfileAccumulator local(bins, tiles);
-    long local_used = 0;
-#pragma omp for schedule(dynamic, 4)
-    for (int j = 0; j < grid.rows; ++j)
-      for (int i = 0; i < grid.columns; ++i) {
-        double cx = 0.0, cy = 0.0;
-        grid.Centre(i, j, cx, cy);
-        const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
-        const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
-        if (AddLens(levelled, cx, cy, reach, core, ty * tiles + tx, local)) ++local_used;
-      }
-#pragma omp critical
-    {
-      total.Merge(local);
-      used += local_used;
-    }
-  }
+  // 1. Accumulate every usable lens, rows of lenses in parallel, summed in a fixed order (the same white image, to
+  // the bit, on every run and thread count).
+  struct Partial {
+    ProfileAccumulator profile;
+    long used = 0;
+  };
+  const Partial total_partial = OrderedParallelSum(
+      grid.rows,
+      [&] {
+        return Partial{ProfileAccumulator(bins, tiles), 0};
+      },
+      [&](int j, Partial& partial) {
+        for (int i = 0; i < grid.columns; ++i) {
+          double cx = 0.0, cy = 0.0;
+          grid.Centre(i, j, cx, cy);
+          const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
+          const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
+          if (AddLens(levelled, cx, cy, reach, core, ty * tiles + tx, partial.profile)) ++partial.used;
+        }
+      },
+      [](Partial& into, const Partial& from) {
+        into.profile.Merge(from.profile);
+        into.used += from.used;
+      });
+  const ProfileAccumulator& total = total_partial.profile;
+  const long used = total_partial.used;
   if (used < 50)
     throw Error(metadata.source + ": too few unclipped, lit micro-images (" + std::to_string(used) +
                 ") to estimate the white image from the capture");

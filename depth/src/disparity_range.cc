@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/ordered_reduction.h"
 #include "lfsp/core/registration.h"
 
 namespace lfsp::depth {
@@ -61,70 +62,78 @@ RangeEstimate EstimateDisparityRange(const LightField& light_field) {
   estimate.searched = std::min(kMaxSearch, 0.25 * shape.width / offset);
   const int levels = static_cast<int>(std::floor(estimate.searched / kStep)) * 2 + 1;
   const cv::Size size = centre.size();
-  // Per pixel: the lowest aggregated cost, its level, and the sum over levels (for the mean); one set per thread,
-  // merged, so the cost volume itself is never held.
-  cv::Mat best_cost(size, CV_32F, cv::Scalar(std::numeric_limits<float>::max()));
-  cv::Mat best_level(size, CV_32S, cv::Scalar(0)), cost_sum = cv::Mat::zeros(size, CV_32F);
-#pragma omp parallel
-  {
-    cv::Mat local_best(size, CV_32F, cv::Scalar(std::numeric_limits<float>::max()));
-    cv::Mat local_level(size, CV_32S, cv::Scalar(0)), local_sum = cv::Mat::zeros(size, CV_32F);
-    cv::Mat aggregated, warped, difference;
-#pragma omp for schedule(dynamic)
-    for (int level = 0; level < levels; ++level) {
-      const double d = (level - (levels - 1) / 2) * kStep;  // px per view step, full resolution
-      // Each view's difference aggregated on its own; the pixel's cost is the sum of the two best views, so that
-      // a view in which an occluder hides the pixel does not decide (the coarse version of the depth stage's
-      // half-patch choice).
-      std::vector<cv::Mat> per_view;
-      for (const SweepView& view : views) {
-        // The centre pixel x at disparity d is seen in view (du, dv) at x - du * d (docs/DESIGN.md convention).
-        const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -view.du * d * scale, 0, 1, -view.dv * d * scale);
-        cv::warpAffine(view.grey, warped, shift, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
-        cv::absdiff(warped, centre, difference);
-        per_view.emplace_back();
-        cv::blur(difference, per_view.back(), cv::Size(kWindow, kWindow));
-      }
-      aggregated.create(size, CV_32F);
-      for (int y = 0; y < size.height; ++y) {
-        float* out = aggregated.ptr<float>(y);
-        for (int x = 0; x < size.width; ++x) {
-          float lowest = std::numeric_limits<float>::max(), second = lowest;
-          for (const cv::Mat& cost : per_view) {
-            const float value = cost.ptr<float>(y)[x];
-            if (value < lowest) {
-              second = lowest;
-              lowest = value;
-            } else if (value < second) {
-              second = value;
-            }
+  // Per pixel: the lowest aggregated cost, its level, and the sum over levels (for the mean). Levels are swept in
+  // parallel and summed in a fixed order (OrderedParallelSum), so the cost volume itself is never held and the
+  // estimate is the same on every run; ties keep the lower level, as a serial sweep would.
+  struct Partial {
+    cv::Mat best, level, sum;
+    cv::Mat aggregated, warped, difference;  // scratch
+  };
+  const auto make_partial = [&] {
+    return Partial{cv::Mat(size, CV_32F, cv::Scalar(std::numeric_limits<float>::max())),
+                   cv::Mat(size, CV_32S, cv::Scalar(0)),
+                   cv::Mat::zeros(size, CV_32F),
+                   {},
+                   {},
+                   {}};
+  };
+  const auto sweep_level = [&](int level, Partial& partial) {
+    const double d = (level - (levels - 1) / 2) * kStep;  // px per view step, full resolution
+    // Each view's difference aggregated on its own; the pixel's cost is the sum of the two best views, so that
+    // a view in which an occluder hides the pixel does not decide (the coarse version of the depth stage's
+    // half-patch choice).
+    std::vector<cv::Mat> per_view;
+    for (const SweepView& view : views) {
+      // The centre pixel x at disparity d is seen in view (du, dv) at x - du * d (docs/DESIGN.md convention).
+      const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -view.du * d * scale, 0, 1, -view.dv * d * scale);
+      cv::warpAffine(view.grey, partial.warped, shift, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                     cv::BORDER_REPLICATE);
+      cv::absdiff(partial.warped, centre, partial.difference);
+      per_view.emplace_back();
+      cv::blur(partial.difference, per_view.back(), cv::Size(kWindow, kWindow));
+    }
+    partial.aggregated.create(size, CV_32F);
+    for (int y = 0; y < size.height; ++y) {
+      float* out = partial.aggregated.ptr<float>(y);
+      for (int x = 0; x < size.width; ++x) {
+        float lowest = std::numeric_limits<float>::max(), second = lowest;
+        for (const cv::Mat& cost : per_view) {
+          const float value = cost.ptr<float>(y)[x];
+          if (value < lowest) {
+            second = lowest;
+            lowest = value;
+          } else if (value < second) {
+            second = value;
           }
-          out[x] = per_view.size() > 1 ? lowest + second : lowest;
         }
-      }
-      local_sum += aggregated;
-      for (int y = 0; y < size.height; ++y) {
-        const float* a = aggregated.ptr<float>(y);
-        float* b = local_best.ptr<float>(y);
-        int* l = local_level.ptr<int>(y);
-        for (int x = 0; x < size.width; ++x)
-          if (a[x] < b[x]) {
-            b[x] = a[x];
-            l[x] = level;
-          }
+        out[x] = per_view.size() > 1 ? lowest + second : lowest;
       }
     }
-#pragma omp critical(lfsp_range_merge)
-    {
-      cost_sum += local_sum;
-      for (int y = 0; y < size.height; ++y)
-        for (int x = 0; x < size.width; ++x)
-          if (local_best.at<float>(y, x) < best_cost.at<float>(y, x)) {
-            best_cost.at<float>(y, x) = local_best.at<float>(y, x);
-            best_level.at<int>(y, x) = local_level.at<int>(y, x);
-          }
+    partial.sum += partial.aggregated;
+    for (int y = 0; y < size.height; ++y) {
+      const float* a = partial.aggregated.ptr<float>(y);
+      float* b = partial.best.ptr<float>(y);
+      int* l = partial.level.ptr<int>(y);
+      for (int x = 0; x < size.width; ++x)
+        if (a[x] < b[x]) {
+          b[x] = a[x];
+          l[x] = level;
+        }
     }
-  }
+  };
+  const auto merge = [&](Partial& into, const Partial& from) {
+    into.sum += from.sum;
+    for (int y = 0; y < size.height; ++y)
+      for (int x = 0; x < size.width; ++x)
+        if (from.best.at<float>(y, x) < into.best.at<float>(y, x)) {
+          into.best.at<float>(y, x) = from.best.at<float>(y, x);
+          into.level.at<int>(y, x) = from.level.at<int>(y, x);
+        }
+  };
+  const Partial swept = OrderedParallelSum(levels, make_partial, sweep_level, merge);
+  const cv::Mat& best_cost = swept.best;
+  const cv::Mat& best_level = swept.level;
+  const cv::Mat& cost_sum = swept.sum;
 
   // Texture: gradient energy of the centre, aggregated like the cost.
   cv::Mat gx, gy, energy;

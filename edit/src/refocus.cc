@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/ordered_reduction.h"
 
 namespace lfsp::edit {
 namespace {
@@ -137,54 +138,54 @@ cv::Mat RefocusImage(const LightField& light_field, float disparity, const Refoc
   // so it is translated as one row and one column instead of a whole image.
   const cv::Mat ones_row(1, shape.width, CV_32FC1, cv::Scalar(1.0));
   const cv::Mat ones_column(shape.height, 1, CV_32FC1, cv::Scalar(1.0));
-  // One view per thread, each thread summing into its own accumulator: a single parallel region per image keeps
-  // both cores busy even on a shared machine (TranslateImage's inner loop then runs serially).
-  Accumulator total_accumulator(shape.height, shape.width, channels);
-#pragma omp parallel
-  {
-    Accumulator local(shape.height, shape.width, channels);
-    cv::Mat shifted;
-    cv::Mat shifted_weight;
-    cv::Mat inside_row;
-    cv::Mat inside_column;
-#pragma omp for schedule(dynamic)
-    for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
-      const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-      const ImageShift shift = ShearShift(view, centre, disparity);
-      const cv::Mat weights = ViewWeights(light_field, view, options.use_ray_weights);
-      if (options.interpolation == ShearInterpolation::kLinear) {
-        AccumulateShiftedViewLinear(light_field.ViewData(view), weights.empty() ? nullptr : weights.ptr<float>(0),
-                                    shape, shift, local);
-        continue;
-      }
-      // Other interpolations: translate the view, then add it with its translated weights (zero outside the view,
-      // so rays that fall outside drop out smoothly).
-      TranslateImage(light_field.View(view), shift, shifted, options.interpolation, ShearBorder::kReplicate);
-      if (weights.empty()) {
-        TranslateImage(ones_row, {shift.dx, 0.0f}, inside_row, ShearInterpolation::kLinear, ShearBorder::kZero);
-        TranslateImage(ones_column, {0.0f, shift.dy}, inside_column, ShearInterpolation::kLinear, ShearBorder::kZero);
-      } else {
-        TranslateImage(weights, shift, shifted_weight, ShearInterpolation::kLinear, ShearBorder::kZero);
-      }
-      for (int y = 0; y < shape.height; ++y) {
-        const float* colour = shifted.ptr<float>(y);
-        const float* weight = weights.empty() ? inside_row.ptr<float>(0) : shifted_weight.ptr<float>(y);
-        const float row_factor = weights.empty() ? inside_column.at<float>(y, 0) : 1.0f;
-        if (row_factor <= 0.0f) continue;
-        float* s = local.sum.ptr<float>(y);
-        float* t = local.total.ptr<float>(y);
-        for (int x = 0; x < shape.width; ++x) {
-          const float w = row_factor * weight[x];
-          if (w <= 0.0f) continue;
-          t[x] += w;
-          for (int c = 0; c < channels; ++c) s[x * channels + c] += w * colour[x * channels + c];
-        }
+  // Views are summed in parallel but in a fixed order (OrderedParallelSum), so the same light field gives the same
+  // bytes on every run and thread count. Each block of views has its own accumulator and scratch images.
+  struct Partial {
+    Accumulator accumulator;
+    cv::Mat shifted, shifted_weight, inside_row, inside_column;
+  };
+  const auto add_view = [&](int cam, Partial& partial) {
+    Accumulator& local = partial.accumulator;
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const ImageShift shift = ShearShift(view, centre, disparity);
+    const cv::Mat weights = ViewWeights(light_field, view, options.use_ray_weights);
+    if (options.interpolation == ShearInterpolation::kLinear) {
+      AccumulateShiftedViewLinear(light_field.ViewData(view), weights.empty() ? nullptr : weights.ptr<float>(0), shape,
+                                  shift, local);
+      return;
+    }
+    // Other interpolations: translate the view, then add it with its translated weights (zero outside the view,
+    // so rays that fall outside drop out smoothly). TranslateImage's own loop runs serially inside this region.
+    TranslateImage(light_field.View(view), shift, partial.shifted, options.interpolation, ShearBorder::kReplicate);
+    if (weights.empty()) {
+      TranslateImage(ones_row, {shift.dx, 0.0f}, partial.inside_row, ShearInterpolation::kLinear, ShearBorder::kZero);
+      TranslateImage(ones_column, {0.0f, shift.dy}, partial.inside_column, ShearInterpolation::kLinear,
+                     ShearBorder::kZero);
+    } else {
+      TranslateImage(weights, shift, partial.shifted_weight, ShearInterpolation::kLinear, ShearBorder::kZero);
+    }
+    for (int y = 0; y < shape.height; ++y) {
+      const float* colour = partial.shifted.ptr<float>(y);
+      const float* weight = weights.empty() ? partial.inside_row.ptr<float>(0) : partial.shifted_weight.ptr<float>(y);
+      const float row_factor = weights.empty() ? partial.inside_column.at<float>(y, 0) : 1.0f;
+      if (row_factor <= 0.0f) continue;
+      float* s = local.sum.ptr<float>(y);
+      float* t = local.total.ptr<float>(y);
+      for (int x = 0; x < shape.width; ++x) {
+        const float w = row_factor * weight[x];
+        if (w <= 0.0f) continue;
+        t[x] += w;
+        for (int c = 0; c < channels; ++c) s[x * channels + c] += w * colour[x * channels + c];
       }
     }
-#pragma omp critical(lfsp_edit_refocus_merge)
-    total_accumulator.Add(local);
-  }
-  return Normalise(total_accumulator.sum, total_accumulator.total, channels);
+  };
+  const Partial total = OrderedParallelSum(
+      static_cast<int>(shape.Views()),
+      [&] {
+        return Partial{Accumulator(shape.height, shape.width, channels), {}, {}, {}, {}};
+      },
+      add_view, [](Partial& into, const Partial& from) { into.accumulator.Add(from.accumulator); });
+  return Normalise(total.accumulator.sum, total.accumulator.total, channels);
 }
 
 std::vector<cv::Mat> FocalStack(const LightField& light_field, const std::vector<float>& disparities,
@@ -313,28 +314,29 @@ cv::Mat AllInFocus(const LightField& light_field, const DisparityMap& disparity,
   const int height = shape.height;
   const ViewIndex centre = shape.Centre();
 
-  // One view per thread with per-thread accumulators (see RefocusImage).
-  Accumulator total_accumulator(height, width, channels);
-#pragma omp parallel
-  {
-    Accumulator local(height, width, channels);
+  // Views summed in a fixed order, as in RefocusImage; each block of views has its own z-buffer scratch.
+  struct Partial {
+    Accumulator accumulator;
     cv::Mat nearest;
-#pragma omp for schedule(dynamic)
-    for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
-      const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-      const bool check_occlusion = options.occlusion_aware && !(view == centre);
-      if (check_occlusion) NearestDisparityInView(disparity, view, centre, nearest);
-      AccumulateRaysAlongDisparity(light_field, disparity, view,
-                                   ViewWeights(light_field, view, options.use_ray_weights),
-                                   check_occlusion ? &nearest : nullptr, options.occlusion_tolerance, local);
-    }
-#pragma omp critical(lfsp_edit_all_in_focus_merge)
-    total_accumulator.Add(local);
-  }
-  const cv::Mat& total = total_accumulator.total;
+  };
+  const auto add_view = [&](int cam, Partial& partial) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const bool check_occlusion = options.occlusion_aware && !(view == centre);
+    if (check_occlusion) NearestDisparityInView(disparity, view, centre, partial.nearest);
+    AccumulateRaysAlongDisparity(light_field, disparity, view, ViewWeights(light_field, view, options.use_ray_weights),
+                                 check_occlusion ? &partial.nearest : nullptr, options.occlusion_tolerance,
+                                 partial.accumulator);
+  };
+  const Partial total_accumulator = OrderedParallelSum(
+      static_cast<int>(shape.Views()),
+      [&] {
+        return Partial{Accumulator(height, width, channels), {}};
+      },
+      add_view, [](Partial& into, const Partial& from) { into.accumulator.Add(from.accumulator); });
+  const cv::Mat& total = total_accumulator.accumulator.total;
 
   // Pixels without any usable ray (non-finite disparity, zero weights) keep the centre view's value.
-  cv::Mat out = Normalise(total_accumulator.sum, total, channels);
+  cv::Mat out = Normalise(total_accumulator.accumulator.sum, total, channels);
   const cv::Mat centre_view = light_field.View(centre);
   for (int y = 0; y < height; ++y) {
     const float* t = total.ptr<float>(y);
