@@ -51,6 +51,13 @@ void RunConvert(const ConvertCommandOptions& options) {
   const Bundle bundle = LoadInput(options.input);
   if (out_extension == ".gif" || out_extension == ".mp4") {
     WriteAnimation(ViewSweepFrames(bundle.light_field), options.out, options.fps);
+  } else if (out_extension == ".pfm") {
+    // The disparity a bundle or folder carries (e.g. a simulation's ground truth), in the HCI convention.
+    if (!bundle.disparity) throw Error(options.input + ": holds no disparity map to write as " + options.out);
+    WritePfm(*bundle.disparity, options.out);
+    spdlog::info("{}: disparity {}x{} -> {}", options.input, bundle.disparity->width(), bundle.disparity->height(),
+                 options.out);
+    return;
   } else {
     SaveLightField(bundle, options.out, options.bit_depth, "." + options.view_format);
   }

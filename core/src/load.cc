@@ -114,6 +114,12 @@ void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth, c
     WriteEslf(bundle.light_field, path, options);
     return;
   }
+  // Anything else is a views folder; a name with a file type's extension is a mistake, not a folder to create.
+  for (const char* file_type : {".pfm", ".jpg", ".jpeg", ".json", ".csv", ".txt", ".exr", ".bmp", ".gif", ".mp4",
+                                ".lfp", ".lfr", ".raw", ".npy", ".npz"})
+    if (extension == file_type)
+      throw Error(path.string() + ": " + extension +
+                  " is not a light-field format (write a views folder, a .h5 bundle, an ESLF .png/.tif or a .mat)");
   internal::CheckReplaceableOutputFolder(path);
   AtomicOutput output(path);
   fs::create_directories(output.temporary());

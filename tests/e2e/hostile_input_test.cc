@@ -265,5 +265,33 @@ TEST(HostileInput, OutputFolderWithATrailingSlashOrDot) {
   ExpectRefused(RunLfsp({"convert", (temp / "lf.h5").string(), (temp / "out.h5" / ".").string()}), "a name of its own");
 }
 
+// `convert X OUT.pfm` writes the disparity X carries; without one, and for outputs named like another file type, it
+// is refused and writes nothing (it used to make a views folder called OUT.pfm).
+TEST(HostileInput, ConvertToPfmWritesTheDisparityOrRefuses) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = SmallLightField(3, 16, 12);
+  WriteBundle(bundle, temp / "plain.h5");
+  bundle.disparity = DisparityMap(16, 12);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) bundle.disparity->at(y, x) = 0.25f * static_cast<float>(x - y);
+  WriteBundle(bundle, temp / "with_truth.h5");
+
+  const CommandResult written = RunLfsp({"convert", (temp / "with_truth.h5").string(), (temp / "gt.pfm").string()});
+  ASSERT_EQ(written.exit_status, 0) << written.err;
+  ASSERT_TRUE(fs::is_regular_file(temp / "gt.pfm"));
+  const DisparityMap read = ReadPfm(temp / "gt.pfm");
+  ASSERT_EQ(read.width(), 16);
+  ASSERT_EQ(read.height(), 12);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) EXPECT_EQ(read.at(y, x), bundle.disparity->at(y, x)) << x << "," << y;
+
+  ExpectRefused(RunLfsp({"convert", (temp / "plain.h5").string(), (temp / "none.pfm").string()}), "no disparity");
+  EXPECT_FALSE(fs::exists(temp / "none.pfm"));
+  ExpectRefused(RunLfsp({"convert", (temp / "plain.h5").string(), (temp / "views.jpg").string()}),
+                "not a light-field format");
+  EXPECT_FALSE(fs::exists(temp / "views.jpg"));
+}
+
 }  // namespace
 }  // namespace lfsp

@@ -24,7 +24,8 @@ Bundle LoadLightField(const std::filesystem::path& path, const LoadOptions& opti
 
 // Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, `.mat` ->
 // LFToolbox's LF(v, u, y, x, c) with the weight channel (mat_light_field.h), else a views
-// folder (the disparity, if any, goes beside the views as disparity.pfm).
+// folder (the disparity, if any, goes beside the views as disparity.pfm); a name with the extension of another
+// file type (.pfm, .jpg, .json, ...) is refused rather than made a folder.
 // `view_extension` (".png" or ".tif") is the views folder's file type.
 void SaveLightField(const Bundle& bundle, const std::filesystem::path& path, int bit_depth = 8,
                     const std::string& view_extension = ".png");
