@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -19,6 +18,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bench_case.h"
+#include "lfsp/core/stopwatch.h"
 
 namespace {
 
@@ -47,9 +47,9 @@ struct CaseResult {
     std::string quality;
     std::string times;
     for (int i = 0; i < repetitions; ++i) {
-      const auto start = std::chrono::steady_clock::now();
+      const lfsp::Stopwatch stopwatch;
       quality = bench_case.run();
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds = stopwatch.Seconds();
       times += std::to_string(seconds) + " ";
     }
     for (char& c : quality)

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -15,6 +14,7 @@
 #include "bench_case.h"
 #include "lfsp/calibrate/calibration.h"
 #include "lfsp/calibrate/corners.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/simulate/checkerboard.h"
 
 namespace lfsp::bench {
@@ -69,11 +69,11 @@ double RayFieldError(const calibrate::RayModel& model, const simulate::Checkerbo
 }
 
 std::string Calibrate(const CalibrationData& data) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   std::vector<calibrate::CaptureCorners> corners;
   for (std::size_t n = 0; n < data.captures.size(); ++n)
     corners.push_back(calibrate::DetectCaptureCorners(data.captures[n], "capture" + std::to_string(n)));
-  const double detect = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double detect = stopwatch.Seconds();
   const calibrate::Calibration result = calibrate::Calibrate(corners);
   const calibrate::Slopes est = result.model.GetSlopes();
   const auto& h = data.camera.h;

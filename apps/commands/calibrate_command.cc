@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -20,6 +19,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stopwatch.h"
 #include "stages/summary.h"
 
 namespace lfsp::cli {
@@ -52,7 +52,7 @@ void ParseCorners(const std::string& text, int& x, int& y) {
 }
 
 void RunCalibrate(const CalibrateCommandOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   calibrate::CornerDetectionOptions detection;
   ParseCorners(options.corners, detection.corners_x, detection.corners_y);
   detection.min_view_weight = options.min_view_weight;
@@ -102,7 +102,7 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
   }
   calibrate::WriteCalibration(result, options.out);
 
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.Seconds();
   std::printf("RMS ray reprojection error %.4f mm over %zu captures (%s)\n", result.rms_mm, result.captures.size(),
               options.out.c_str());
   nlohmann::json summary = {{"command", "calibrate"},

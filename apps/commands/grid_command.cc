@@ -2,7 +2,6 @@
 // ordinary capture.
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -11,6 +10,7 @@
 #include "command_registry.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/raw_input.h"
 #include "raw_input_options.h"
@@ -52,7 +52,7 @@ std::optional<decode::GridGuess> GuessFor(const decode::RawInput& input) {
 }
 
 void RunGrid(const GridCommandOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   decode::LensletImageKind kind = decode::LensletImageKindFromString(options.kind);
   const decode::RawInput input = decode::OpenRawInput(options.input, ToPlainRawOptions(options.plain));
   if (kind == decode::LensletImageKind::kAuto && input.white_image) kind = decode::LensletImageKind::kWhiteImage;
@@ -66,7 +66,7 @@ void RunGrid(const GridCommandOptions& options) {
     throw Error(options.input + ": " + e.what());
   }
   const decode::LensletGrid& grid = estimate.grid;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.Seconds();
 
   nlohmann::json document = {{"input", options.input},
                              {"format", input.format},

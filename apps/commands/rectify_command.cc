@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,6 +14,7 @@
 #include "lfsp/calibrate/rectify.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/load.h"
+#include "lfsp/core/stopwatch.h"
 #include "stages/summary.h"
 
 namespace lfsp::cli {
@@ -29,7 +29,7 @@ struct RectifyCommandOptions {
 };
 
 void RunRectify(const RectifyCommandOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth must be 8 or 16");
   if (options.inverse_iterations < 0 || options.inverse_iterations > 100)
     throw Error("--inverse-iterations must be in 0..100");
@@ -64,7 +64,7 @@ void RunRectify(const RectifyCommandOptions& options) {
                                              {"calibration_file", options.calibration}};
   SaveLightField(out, options.out, options.bit_depth);
 
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.Seconds();
   nlohmann::json summary = {
       {"command", "rectify"},
       {"input", options.input},

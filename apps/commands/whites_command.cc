@@ -1,7 +1,6 @@
 // `lfsp whites build DIR` and `lfsp whites select DIR CAPTURE`: the white-image database (issue 4, item 3).
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -9,6 +8,7 @@
 
 #include "command_registry.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lytro_capture.h"
 #include "lfsp/decode/white_database.h"
 #include "stages/summary.h"
@@ -35,13 +35,13 @@ void PrintTable(const decode::WhiteImageDatabase& db) {
 }
 
 void RunBuild(const WhitesOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const decode::WhiteImageDatabase db = decode::BuildWhiteImageDatabase(options.dir);
   const std::filesystem::path out = options.out.empty()
                                         ? std::filesystem::path(options.dir) / decode::kWhiteDatabaseFileName
                                         : std::filesystem::path(options.out);
   decode::WriteWhiteImageDatabase(db, out);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.Seconds();
   stages::WriteJsonSummary(
       nlohmann::ordered_json{{"command", "whites build"},
                              {"inputs", {{"dir", options.dir}}},

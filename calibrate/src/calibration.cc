@@ -7,7 +7,6 @@
 #include <ceres/ceres.h>
 #include <spdlog/spdlog.h>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -16,6 +15,7 @@
 
 #include "initialisation.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/stopwatch.h"
 #include "ray_distance_cost.h"
 
 namespace lfsp::calibrate {
@@ -226,10 +226,7 @@ Calibration Calibrate(const std::vector<CaptureCorners>& all_captures, const Cal
   result.zoom_step = first.zoom_step;
   result.focus_step = first.focus_step;
 
-  const auto start = std::chrono::steady_clock::now();
-  const auto seconds = [&start] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  const Stopwatch stopwatch;
   const std::vector<Observation> observations = MakeObservations(captures, options.square_size);
   const internal::InitialEstimate initial =
       internal::InitialiseFromHomographies(captures, observations, options.square_size);
@@ -251,7 +248,7 @@ Calibration Calibrate(const std::vector<CaptureCorners>& all_captures, const Cal
     const auto norms = ResidualNorms(observations, parameters.slopes, parameters.distortion, parameters.poses);
     std::vector<double> chosen;
     for (std::size_t n : used) chosen.push_back(norms[n]);
-    result.stages.push_back({name, Rms(chosen), iterations, static_cast<int>(used.size()), seconds()});
+    result.stages.push_back({name, Rms(chosen), iterations, static_cast<int>(used.size()), stopwatch.Seconds()});
     spdlog::info("calibration stage {}: RMS ray reprojection error {:.4f} mm over {} corners ({} iterations)", name,
                  result.stages.back().rms_mm, used.size(), iterations);
     return norms;

@@ -16,17 +16,6 @@
 namespace lfsp::decode {
 namespace {
 
-// Fills the report's wall and CPU seconds of each step (the CPU time shows how well a step uses the cores).
-class StepTimer {
- public:
-  explicit StepTimer(DecodeReport& report) : report_(report) {}
-  void Lap(const std::string& step) { report_.seconds[step] = stopwatch_.Lap(&report_.cpu_seconds[step]); }
-
- private:
-  DecodeReport& report_;
-  Stopwatch stopwatch_;
-};
-
 void CheckSize(const RawImage& image, int width, int height, const std::string& what) {
   if (image.width != width || image.height != height || image.pixels.size() != image.PixelCount())
     throw Error(what + ": raw image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " with " +
@@ -158,7 +147,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report = {};
   out_report.demosaic = std::string(ToString(options.demosaic));
   out_report.colour = std::string(ToString(options.colour));
-  StepTimer timer(out_report);
+  // Wall and CPU seconds of each step into the report (the CPU time shows how well a step uses the cores).
+  Stopwatch stopwatch;
+  const auto lap = [&](const char* step) { out_report.seconds[step] = stopwatch.Lap(&out_report.cpu_seconds[step]); };
   CheckSize(capture, grid.sensor_width, grid.sensor_height, capture_metadata.source);
   if (white.inverse.cols != grid.sensor_width || white.inverse.rows != grid.sensor_height ||
       white.grey.size() != white.inverse.size())
@@ -190,14 +181,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
                                      options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
                                      out_report.hot_pixels_corrected);
-  timer.Lap("levels_hot_pixels_devignette");
+  lap("levels_hot_pixels_devignette");
 
   // 2. Demosaic.
   const cv::Mat lens_labels = LensLabels(grid);
   const MicroImages micro_images{white.grey, lens_labels};
   const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
   bayer.release();
-  timer.Lap("demosaic");
+  lap("demosaic");
 
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
   //    never clipped: the whole light field is darkened instead).
@@ -206,16 +197,16 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
   out_report.output_scale = colour.scale;
-  timer.Lap("exposure");
+  lap("exposure");
 
   // 4. One interpolation pass into the 4D grid, then the row-alternation softening and encoding.
   LightField light_field = allocation.get();
-  timer.Lap("allocate_wait");
+  lap("allocate_wait");
   SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
-  timer.Lap("slice");
+  lap("slice");
   SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
-  timer.Lap("soften_encode");
+  lap("soften_encode");
   out_report.row_alternation = RowAlternationRatio(light_field);
 
   light_field.metadata["decode"] = {

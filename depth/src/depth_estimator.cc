@@ -15,22 +15,7 @@
 namespace lfsp::depth {
 namespace {
 
-// Times each step into `timings` and advances the progress display (drawn only on a terminal) by one step.
-class StepTimer {
- public:
-  StepTimer(nlohmann::json& timings, std::size_t steps) : timings_(timings), progress_("depth", steps) {}
-  void Lap(const char* step) {
-    timings_[step] = stopwatch_.Lap();
-    progress_.Tick();
-  }
-
- private:
-  nlohmann::json& timings_;
-  Progress progress_;
-  Stopwatch stopwatch_;
-};
-
-// How many steps EstimateDepth times (as many Lap calls as it makes).
+// How many steps EstimateDepth times (as many laps as it makes).
 std::size_t StepsOf(const DepthOptions& options) {
   return 4 + (options.aggregation_radius > 0 ? 1 : 0) + (options.regularise ? 2 : 0) +
          (options.regularise && options.plane_fit ? 1 : 0);
@@ -70,7 +55,13 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (light_field.shape().channels != 3) {
     throw Error("depth: the light field must hold RGB views (got " + ToString(light_field.shape()) + ")");
   }
-  StepTimer timer(result.timings, StepsOf(options));
+  // Each step's seconds into the timings, and one tick of the progress display (drawn only on a terminal).
+  Stopwatch stopwatch;
+  Progress progress("depth", StepsOf(options));
+  const auto lap = [&](const char* step) {
+    result.timings[step] = stopwatch.Lap();
+    progress.Tick();
+  };
   // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
   result.noise_sigma = EstimateChannelNoiseSigma(light_field.View(light_field.shape().Centre()));
   result.presmooth_sigma = options.presmooth_sigma < 0.0f
@@ -80,7 +71,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
   const LightField& views = smoothed ? *smoothed : light_field;
   const cv::Mat centre = views.View(views.shape().Centre());
-  timer.Lap("presmooth");
+  lap("presmooth");
 
   std::optional<OcclusionMap> occlusion;
   if (options.occlusion_handling) {
@@ -93,7 +84,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     occlusion = DetectOcclusionEdges(centre, occlusion_options);
     result.occlusion_candidates = occlusion->Candidates();
   }
-  timer.Lap("occlusion_edges");
+  lap("occlusion_edges");
   CostOptions cost_options = options.cost;
   if (cost_options.excluded_ring < 0) cost_options.excluded_ring = ExcludedRingFor(light_field);
   result.excluded_ring = cost_options.excluded_ring;
@@ -102,29 +93,29 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
         DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma, cost_options);
   result.detail_weight = cost_options.detail_weight;
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
-  timer.Lap("cost_volume");
+  lap("cost_volume");
   if (options.aggregation_radius > 0) {
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);
-    timer.Lap("local_aggregation");
+    lap("local_aggregation");
   }
   CostVolume raw_cost;  // kept only for the plane fit's data support
   if (options.regularise) {
     CostVolume aggregated = AggregateSemiGlobal(cost, centre, options.sgm);
     if (options.plane_fit) raw_cost = std::move(cost);
     cost = std::move(aggregated);
-    timer.Lap("semi_global");
+    lap("semi_global");
   }
   DisparityEstimate estimate = SelectDisparity(cost, disparities);
-  timer.Lap("select");
+  lap("select");
   if (options.regularise && options.plane_fit) {
     const DisparityMap support = DataSupport(raw_cost, estimate.disparity, disparities);
     raw_cost = CostVolume();
     PlaneFitRefine(estimate.disparity, support, centre, options.plane);
-    timer.Lap("plane_fit");
+    lap("plane_fit");
   }
   if (options.regularise) {
     WeightedMedianRefine(estimate.disparity, centre, options.median_radius, options.median_sigma);
-    timer.Lap("weighted_median");
+    lap("weighted_median");
   }
   result.disparity = std::move(estimate.disparity);
   result.confidence = std::move(estimate.confidence);

@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
@@ -13,16 +12,13 @@
 #include "lab_image.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/noise.h"
+#include "lfsp/core/stopwatch.h"
 #include "planes.h"
 #include "refine.h"
 #include "warp.h"
 
 namespace lfsp::segment {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The centre disparity with non-finite samples replaced by the median, and its range (at least 1e-3).
 cv::Mat CleanDisparity(const DisparityMap& disparity, double& range) {
@@ -91,31 +87,28 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   }
   const int saved_threads = omp_get_max_threads();
   if (params.threads > 0) omp_set_num_threads(params.threads);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch total;
+  Stopwatch step;
   LfspResult result;
 
-  auto step = std::chrono::steady_clock::now();
   std::vector<float> lab = LabOfLightField(light_field);
   result.noise_sigma = EstimateNoiseSigma(light_field.View(shape.Centre()));
   result.presmooth = params.presmooth < 0.0 ? PresmoothForNoise(result.noise_sigma) : params.presmooth;
   if (result.presmooth > 0.0) SmoothLabViews(lab, shape, result.presmooth);
-  result.timings.lab_seconds = SecondsSince(step);
+  result.timings.lab_seconds = step.Lap();
 
-  step = std::chrono::steady_clock::now();
   double range = 1.0;
   const cv::Mat centre_disparity = CleanDisparity(disparity, range);
   const ViewIndex centre = shape.Centre();
   cv::Mat centre_labels =
       CentreSuperpixels(LabView(lab, shape, centre), centre_disparity, range, params, result.superpixels);
   result.planes = FitPlanes(centre_labels, result.superpixels, centre_disparity, params.inlier_threshold);
-  result.timings.initial_seconds = SecondsSince(step);
+  result.timings.initial_seconds = step.Lap();
 
-  step = std::chrono::steady_clock::now();
   result.labels = Labels(shape);
   ProjectSuperpixels(centre_labels, result.planes, result.labels);
-  result.timings.projection_seconds = SecondsSince(step);
+  result.timings.projection_seconds = step.Lap();
 
-  step = std::chrono::steady_clock::now();
   RefineInputs inputs;
   inputs.lab = lab.data();
   inputs.centre_disparity = centre_disparity.ptr<float>(0);
@@ -127,16 +120,15 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   result.moves_per_iteration = report.moves_per_iteration;
   result.sweep_seconds = report.sweep_seconds;
   result.timings.plane_seconds = report.plane_seconds;
-  result.timings.refine_seconds = SecondsSince(step);
+  result.timings.refine_seconds = step.Lap();
 
-  step = std::chrono::steady_clock::now();
   const int views = static_cast<int>(shape.Views());
 #pragma omp parallel for schedule(dynamic)
   for (int cam = 0; cam < views; ++cam) {
     KeepLargestPieces(result.labels.ViewData(ViewFromCameraNumber(cam, shape.nu)), shape.width, shape.height);
   }
-  result.timings.cleanup_seconds = SecondsSince(step);
-  result.timings.total_seconds = SecondsSince(start);
+  result.timings.cleanup_seconds = step.Lap();
+  result.timings.total_seconds = total.Seconds();
   if (params.threads > 0) omp_set_num_threads(saved_threads);
   return result;
 }

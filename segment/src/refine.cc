@@ -1,10 +1,10 @@
 #include "refine.h"
 
 #include "lfsp/core/progress.h"
+#include "lfsp/core/stopwatch.h"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -384,17 +384,16 @@ RefineReport RefineLabels(const RefineInputs& inputs, const LfspParams& params, 
                           const_cast<float*>(inputs.centre_disparity));
   Progress progress("segment", static_cast<std::size_t>(params.iterations));  // drawn only on a terminal
   for (int iteration = 0; iteration < params.iterations; ++iteration) {
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch step;
     const long long moves = refiner.Sweep();
     progress.Tick();
-    report.sweep_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    start = std::chrono::steady_clock::now();
+    report.sweep_seconds.push_back(step.Lap());
     report.moves += moves;
     report.moves_per_iteration.push_back(moves);
     ++report.iterations;
     const BoundaryTypeCounts types =
         SmoothPlanes(refiner.CentreLabels(), inputs.superpixels, disparity, inputs.disparity_range, params, planes);
-    report.plane_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.plane_seconds += step.Lap();
     report.occlusion_boundaries = types.occlusion;
     report.hinge_boundaries = types.hinge;
     report.coplanar_boundaries = types.coplanar;
