@@ -133,11 +133,9 @@ TEST(KeepLargestPieces, ALabelEnclosedByAnotherIsItsOwnConnectedPiece) {
   ExpectEveryLabelConnected(map);
 }
 
-// The header's promise on a map where every piece is a single pixel. Measured (libstdc++; ties between equal votes
-// follow unordered_map order): 14 rays relabelled, leaving
-//   0 1 1 0 / 0 1 0 0 / 1 0 1 0 / 1 1 1 0
-// with label 0 in 3 pieces and label 1 in 2: the same stranding as the test below.
-TEST(KeepLargestPieces, DISABLED_EveryLabelIsConnectedAfterCleaningACheckerboard) {
+// The header's promise on a map where every piece is a single pixel. Before pieces joined only settled regions this
+// left (ties following unordered_map order) 0 1 1 0 / 0 1 0 0 / 1 0 1 0 / 1 1 1 0: label 0 in 3 pieces, label 1 in 2.
+TEST(KeepLargestPieces, EveryLabelIsConnectedAfterCleaningACheckerboard) {
   Map map = Parse({"0101", "1010", "0101", "1010"});
   Clean(map);
   ExpectEveryLabelConnected(map);
@@ -150,19 +148,20 @@ TEST(KeepLargestPieces, DISABLED_EveryLabelIsConnectedAfterCleaningACheckerboard
 // isolated 1: labels after cleaning are
 //   1 3 3 3 3 3 / 3 3 3 3 3 3 / 3 3 3 3 3 3 / 1 1 1 1 1 1 / 2 2 2 2 2 2, and label 1 is in two pieces.
 // Either P should be re-voted after Q moves, or pieces should be merged in an order that cannot strand one.
-TEST(KeepLargestPieces, DISABLED_APieceMergedIntoAPieceThatMovesLaterIsNotStranded) {
+TEST(KeepLargestPieces, APieceMergedIntoAPieceThatMovesLaterIsNotStranded) {
   Map map = Parse({"213333", "113333", "333333", "111111", "222222"});
   Clean(map);
   ExpectEveryLabelConnected(map);
   EXPECT_EQ(map.labels[0], 3) << "the corner should end with the label that surrounds it";
 }
 
-// What the code does today on the map above (so a change of it is noticed either way).
-TEST(KeepLargestPieces, StrandedPieceAsMeasured) {
+// The whole result on the map above: Q joins 3 first (the corner has no settled neighbour yet), then the corner
+// joins 3 through Q. Before the fix the corner ended as an island of label 1.
+TEST(KeepLargestPieces, TheCornerFollowsThePieceItJoinedThrough) {
   Map map = Parse({"213333", "113333", "333333", "111111", "222222"});
   EXPECT_EQ(Clean(map), 4);
-  EXPECT_EQ(map.labels, Parse({"133333", "333333", "333333", "111111", "222222"}).labels);
-  EXPECT_EQ(PiecesPerLabel(map)[1], 2);
+  EXPECT_EQ(map.labels, Parse({"333333", "333333", "333333", "111111", "222222"}).labels);
+  EXPECT_EQ(PiecesPerLabel(map)[1], 1);
 }
 
 }  // namespace
