@@ -1,0 +1,20 @@
+// Fuzz target: the .h5 bundle every stage reads and writes (ReadBundle), and its labels alone (ReadLabels, what
+// recolor and evaluate read), on the same bytes.
+
+#include "../../decode/fuzz/fuzz_target.h"
+#include "fuzz_file.h"
+#include "lfsp/core/error.h"
+#include "lfsp/core/hdf5_bundle.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::filesystem::path file = FuzzInputFile(data, size, ".h5");
+  try {
+    (void)lfsp::ReadBundle(file);
+  } catch (const lfsp::Error&) {
+  }
+  try {
+    (void)lfsp::ReadLabels(file);
+  } catch (const lfsp::Error&) {
+  }
+  return 0;
+}
