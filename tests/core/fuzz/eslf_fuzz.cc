@@ -3,8 +3,8 @@
 
 #include "../../decode/fuzz/fuzz_target.h"
 #include "fuzz_file.h"
-#include "lfsp/core/eslf.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/eslf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
