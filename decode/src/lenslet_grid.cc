@@ -10,6 +10,7 @@
 
 #include "bayer_levels.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/ordered_reduction.h"
 
 namespace lfsp::decode {
 namespace {
@@ -115,25 +116,24 @@ cv::Mat WhiteImageToGrey(const RawImage& white, const RawFormat& format, const s
     throw Error(source + ": white image has no pixels or a buffer of the wrong size");
   const PhaseLevels levels = LevelsOf(format, source);
   cv::Mat grey(white.height, white.width, CV_32F);
-  // Levels, and the mean of each Bayer phase (the sensor's colour response to the white diffuser).
-  std::array<double, 4> sums{};
-#pragma omp parallel
-  {
-    std::array<double, 4> local{};
-#pragma omp for schedule(static)
-    for (int y = 0; y < white.height; ++y) {
-      const std::uint16_t* in = white.pixels.data() + static_cast<std::size_t>(y) * white.width;
-      float* out = grey.ptr<float>(y);
-      for (int x = 0; x < white.width; ++x) {
-        const int phase = 2 * (y & 1) + (x & 1);
-        const float value = std::max(0.0f, (static_cast<float>(in[x]) - levels.black[phase]) * levels.scale[phase]);
-        out[x] = value;
-        local[phase] += value;
-      }
-    }
-#pragma omp critical
-    for (int phase = 0; phase < 4; ++phase) sums[phase] += local[phase];
-  }
+  // Levels, and the mean of each Bayer phase (the sensor's colour response to the white diffuser), summed in a fixed
+  // order so that the gains do not depend on the thread count (docs/DESIGN.md, "Same input, same bytes").
+  using PhaseSums = std::array<double, 4>;
+  const PhaseSums sums = OrderedParallelSum(
+      white.height, [] { return PhaseSums{}; },
+      [&](int y, PhaseSums& local) {
+        const std::uint16_t* in = white.pixels.data() + static_cast<std::size_t>(y) * white.width;
+        float* out = grey.ptr<float>(y);
+        for (int x = 0; x < white.width; ++x) {
+          const int phase = 2 * (y & 1) + (x & 1);
+          const float value = std::max(0.0f, (static_cast<float>(in[x]) - levels.black[phase]) * levels.scale[phase]);
+          out[x] = value;
+          local[phase] += value;
+        }
+      },
+      [](PhaseSums& into, const PhaseSums& from) {
+        for (int phase = 0; phase < 4; ++phase) into[phase] += from[phase];
+      });
   std::array<float, 4> gain{};
   const double mean_all = (sums[0] + sums[1] + sums[2] + sums[3]) / 4.0;
   for (int phase = 0; phase < 4; ++phase) {
