@@ -3,12 +3,14 @@
 // would make them differ.
 
 #include "lfsp/core/ordered_reduction.h"
+#include "lfsp/core/stats.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 namespace lfsp {
@@ -81,6 +83,41 @@ TEST(OrderedParallelSum, EveryItemOnce) {
       [](long long& into, const long long& from) { into += from; });
   EXPECT_EQ(sum, 500LL * 499 / 2);
   for (const int count : seen) EXPECT_EQ(count, 1);
+}
+
+// ComputeStats sums through OrderedParallelSum: exact counts, range and mean over several chunks (65,536 values
+// each) with non-finite values and a stride, and the same bits for any thread count.
+TEST(ComputeStats, CountsRangeAndMeanAcrossChunksForEveryThreadCount) {
+  constexpr std::size_t kCount = 200003;            // three full chunks and a partial one
+  std::vector<float> values(2 * kCount, -1000.0f);  // stride 2: the odd entries must be ignored
+  double expected_sum = 0.0;
+  std::size_t expected_finite = 0;
+  for (std::size_t i = 0; i < kCount; ++i) {
+    float value = Item(static_cast<int>(i));
+    if (i % 1009 == 0) value = std::numeric_limits<float>::quiet_NaN();
+    if (i % 2003 == 0) value = std::numeric_limits<float>::infinity();
+    if (i == 77777) value = -3.5f;
+    values[2 * i] = value;
+    if (std::isfinite(value)) {
+      expected_sum += value;
+      ++expected_finite;
+    }
+  }
+  const int previous = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const ValueStats reference = ComputeStats(values.data(), kCount, 2);
+  EXPECT_EQ(reference.count, expected_finite);
+  EXPECT_EQ(reference.non_finite, kCount - expected_finite);
+  EXPECT_EQ(reference.min, -3.5);
+  EXPECT_NEAR(reference.mean, expected_sum / static_cast<double>(expected_finite), 1e-9 * std::abs(reference.mean));
+  for (const int threads : {2, 3, 5}) {
+    omp_set_num_threads(threads);
+    const ValueStats again = ComputeStats(values.data(), kCount, 2);
+    EXPECT_EQ(std::memcmp(&again.mean, &reference.mean, sizeof(double)), 0) << threads << " threads";
+    EXPECT_EQ(again.max, reference.max);
+    EXPECT_EQ(again.count, reference.count);
+  }
+  omp_set_num_threads(previous);
 }
 
 }  // namespace
