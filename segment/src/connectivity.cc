@@ -62,7 +62,7 @@ long long KeepLargestPieces(std::int32_t* labels, int width, int height) {
   const Pieces pieces = FindPieces(labels, width, height);
   const int count = static_cast<int>(pieces.size.size());
 
-  // Each label's largest piece (the first found among equals) is final and keeps its label.
+  // Each label's largest piece (the first found among equals) is settled and keeps its label.
   std::unordered_map<std::int32_t, int> largest;
   for (int id = 0; id < count; ++id) {
     auto [it, inserted] = largest.try_emplace(pieces.label[static_cast<std::size_t>(id)], id);
@@ -71,20 +71,20 @@ long long KeepLargestPieces(std::int32_t* labels, int width, int height) {
   }
   if (largest.size() == pieces.size.size()) return 0;  // every label is one piece already
 
-  std::vector<char> final(static_cast<std::size_t>(count), 0);
-  std::vector<std::int32_t> final_label(pieces.label);
+  std::vector<char> settled(static_cast<std::size_t>(count), 0);
+  std::vector<std::int32_t> settled_label(pieces.label);
   std::vector<int> stray;
   for (int id = 0; id < count; ++id) {
     if (largest[pieces.label[static_cast<std::size_t>(id)]] == id)
-      final[static_cast<std::size_t>(id)] = 1;
+      settled[static_cast<std::size_t>(id)] = 1;
     else
       stray.push_back(id);
   }
 
-  // A stray piece joins the label it shares most border with, counting only neighbours that are final, and then is
-  // final itself. Joining only final regions keeps every label one connected region: merging into a piece that
-  // moved later used to strand the joiner as an island. A piece with no final neighbour yet waits for a later
-  // round; every round finishes at least one piece, since the image is connected and holds final pieces.
+  // A stray piece joins the label it shares most border with, counting only neighbours that are settled, and then is
+  // settled itself. Joining only settled regions keeps every label one connected region: merging into a piece that
+  // moved later used to strand the joiner as an island. A piece with no settled neighbour yet waits for a later
+  // round; every round finishes at least one piece, since the image is connected and holds settled pieces.
   long long relabelled = 0;
   while (!stray.empty()) {
     std::vector<int> waiting;
@@ -94,7 +94,7 @@ long long KeepLargestPieces(std::int32_t* labels, int width, int height) {
       for (int i = pieces.start[sid]; i < pieces.start[sid + 1]; ++i) {
         ForEachNeighbour(pieces.order[static_cast<std::size_t>(i)], width, height, [&](int j) {
           const auto neighbour = static_cast<std::size_t>(pieces.of_pixel[static_cast<std::size_t>(j)]);
-          if (neighbour != sid && final[neighbour]) ++votes[final_label[neighbour]];
+          if (neighbour != sid && settled[neighbour]) ++votes[settled_label[neighbour]];
         });
       }
       if (votes.empty()) {
@@ -103,18 +103,18 @@ long long KeepLargestPieces(std::int32_t* labels, int width, int height) {
       }
       const auto best = std::max_element(votes.begin(), votes.end(),
                                          [](const auto& a, const auto& b) { return a.second < b.second; });
-      final_label[sid] = best->first;
-      final[sid] = 1;
+      settled_label[sid] = best->first;
+      settled[sid] = 1;
       if (best->first != pieces.label[sid]) relabelled += pieces.size[sid];
     }
-    if (waiting.size() == stray.size()) break;  // no final piece anywhere (cannot happen: each label keeps one)
+    if (waiting.size() == stray.size()) break;  // no settled piece anywhere (cannot happen: each label keeps one)
     stray = std::move(waiting);
   }
   for (int id = 0; id < count; ++id) {
     const auto sid = static_cast<std::size_t>(id);
-    if (final_label[sid] == pieces.label[sid]) continue;
+    if (settled_label[sid] == pieces.label[sid]) continue;
     for (int i = pieces.start[sid]; i < pieces.start[sid + 1]; ++i)
-      labels[pieces.order[static_cast<std::size_t>(i)]] = final_label[sid];
+      labels[pieces.order[static_cast<std::size_t>(i)]] = settled_label[sid];
   }
   return relabelled;
 }
