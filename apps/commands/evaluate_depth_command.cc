@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "arguments/evaluate_arguments.h"
 #include "evaluate_registry.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/depth/metrics.h"
@@ -40,19 +41,7 @@ void AddEvaluateDepth(CLI::App& evaluate) {
   command->add_option("algo", options->algo, "Disparity map to score (PFM, HCI convention)")->required();
   command->add_option("--gt", options->gt, "Ground-truth disparity (PFM, e.g. gt_disp_lowres.pfm)")->required();
   command->add_option("--json", options->json, "Also write the metrics to this JSON file (default: none)");
-  command->add_option("--boundary", options->metrics.boundary, "Ignored frame in pixels (HCI toolkit: 15)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  command
-      ->add_option("--jump", options->metrics.discontinuity_jump,
-                   "GT disparity step between 4-neighbours that counts as a discontinuity (px/view)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  command
-      ->add_option("--near", options->metrics.discontinuity_radius,
-                   "Radius (px) around GT discontinuities for the near-discontinuity metrics")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  AddDepthMetricArguments(command, options->metrics);
   command->callback([options] { RunEvaluateDepth(*options); });
 }
 

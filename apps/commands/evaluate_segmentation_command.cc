@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "arguments/evaluate_arguments.h"
 #include "evaluate_registry.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
@@ -28,10 +29,7 @@ struct EvaluateSegmentationOptions {
   std::string gt_disparity;
   std::string gt_labels;
   std::string json;
-  bool baselines = false;
-  bool no_refocus = false;
-  std::vector<double> refocus_levels = segment::DefaultRefocusLevels();
-  int tolerance = 2;
+  SegmentationEvaluationArguments scoring;
 };
 
 void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
@@ -51,11 +49,7 @@ void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
     }
   }
 
-  segment::EvaluationOptions evaluation;
-  evaluation.boundary_tolerance = options.tolerance;
-  evaluation.baselines = options.baselines;
-  evaluation.refocus = !options.no_refocus;
-  evaluation.refocus_levels = options.refocus_levels;
+  const segment::EvaluationOptions evaluation = ToEvaluationOptions(options.scoring);
   const stages::GroundTruth truth{gt_disparity ? &*gt_disparity : nullptr, gt_labels ? &*gt_labels : nullptr};
   nlohmann::json report = stages::EvaluateSegmentationBundle(bundle, truth, evaluation, options.input);
   report["input"] = options.input;
@@ -86,17 +80,7 @@ void AddEvaluateSegmentation(CLI::App& evaluate) {
                    "Bundle (.h5) whose `labels` are ground-truth object labels of every ray, for BR/UE/ASA (old "
                    "HCI lf.h5 with labels.h5 beside it works too; default: none)")
       ->check(CLI::ExistingFile);
-  command->add_flag("--baselines", options->baselines,
-                    "Also run and score per-view SLIC and LSC and SLIC supervoxels (row-first, column-first) at the "
-                    "same size; default: off");
-  command->add_flag("--no-refocus", options->no_refocus,
-                    "Skip the refocus sweep (LFSP re-run on the light field refocused to each level); default: off");
-  command->add_option("--refocus-levels", options->refocus_levels, "Refocus levels (disparity shifts, px)")
-      ->capture_default_str()
-      ->delimiter(',');
-  command->add_option("--tolerance", options->tolerance, "Boundary-recall tolerance, pixels (chessboard)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 100));
+  AddSegmentationEvaluationArguments(command, options->scoring);
   command->add_option("--json", options->json, "Also write the report to this JSON file (default: none)");
   command->callback([options] { RunEvaluateSegmentation(*options); });
 }

@@ -10,10 +10,10 @@
 #include "command_registry.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/raw_input.h"
 #include "raw_input_options.h"
+#include "stages/grid_stage.h"
 #include "stages/summary.h"
 
 namespace lfsp::cli {
@@ -46,35 +46,11 @@ void WriteCentres(const decode::LensletGrid& grid, const std::filesystem::path& 
   output.Commit();
 }
 
-std::optional<decode::GridGuess> GuessFor(const decode::RawInput& input) {
-  if (!input.metadata.mla) return std::nullopt;
-  return decode::GuessFromMetadata(input.metadata, input.raw.width, input.raw.height);
-}
-
 void RunGrid(const GridCommandOptions& options) {
-  const Stopwatch stopwatch;
-  decode::LensletImageKind kind = decode::LensletImageKindFromString(options.kind);
-  const decode::RawInput input = decode::OpenRawInput(options.input, ToPlainRawOptions(options.plain));
-  if (kind == decode::LensletImageKind::kAuto && input.white_image) kind = decode::LensletImageKind::kWhiteImage;
-  if (kind == decode::LensletImageKind::kAuto && !decode::IsPlainRawImagePath(input.path))
-    kind = decode::LensletImageKind::kCapture;  // a Lytro capture
-  const cv::Mat grey = decode::WhiteImageToGrey(input.raw, *input.metadata.raw_format, options.input);
-  decode::GridEstimate estimate;
-  try {
-    estimate = decode::FindLensletGrid(grey, GuessFor(input), kind);
-  } catch (const Error& e) {
-    throw Error(options.input + ": " + e.what());
-  }
-  const decode::LensletGrid& grid = estimate.grid;
-  const double seconds = stopwatch.Seconds();
-
-  nlohmann::json document = {{"input", options.input},
-                             {"format", input.format},
-                             {"metadata", input.metadata.schema},
-                             {"kind", std::string(decode::ToString(kind))},
-                             {"grid", grid.ToJson()},
-                             {"seconds", seconds}};
-  stages::WriteJsonSummary(document, options.out);
+  const stages::GridStageResult result =
+      stages::RunGridStage(options.input, options.kind, ToPlainRawOptions(options.plain));
+  const decode::LensletGrid& grid = result.grid;
+  stages::WriteJsonSummary(result.document, options.out);
   if (!options.centres.empty()) WriteCentres(grid, options.centres);
   const std::string quality =
       grid.fit_method == "capture periodicity"
@@ -84,7 +60,7 @@ void RunGrid(const GridCommandOptions& options) {
       "%s: lenslet grid %d x %d lenses, spacing %.4f x %.4f px, rotation %.6f rad, fit rms %.3f px (%s, %s, "
       "%.2f s) -> %s\n",
       options.input.c_str(), grid.columns, grid.rows, grid.spacing_x, grid.spacing_y, grid.rotation, grid.rms_residual,
-      grid.fit_method.c_str(), quality.c_str(), seconds, options.out.c_str());
+      grid.fit_method.c_str(), quality.c_str(), result.document.at("seconds").get<double>(), options.out.c_str());
 }
 
 void AddGridCommand(CLI::App& app) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "arguments/recolor_arguments.h"
 #include "command_registry.h"
 #include "input_loading.h"
 #include "lfsp/core/error.h"
@@ -33,14 +34,9 @@ struct RecolorCommandOptions {
   std::vector<std::int32_t> label_ids;
   std::vector<std::string> at;
   std::string mask;
-  float hue = 0.0f;
-  float saturation = 1.0f;
-  float value = 1.0f;
-  std::string space = "lch";
-  float feather = 0.0f;
-  bool no_weights = false;
   int bit_depth = 8;
   std::string out;
+  RecolorArguments colour_edit;
 };
 
 std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, const Labels& labels,
@@ -59,20 +55,6 @@ std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, 
   }
   how = {{"by", "mask"}, {"mask", options.mask}, {"min_area_fraction", 0.5}};
   return edit::SelectByMask(labels, ReadImage(options.mask).pixels, 0.5);
-}
-
-edit::RecolorOptions RecolorOptionsOf(const RecolorCommandOptions& options) {
-  if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
-  edit::RecolorOptions recolor;
-  recolor.adjustment.hue_degrees = options.hue;
-  recolor.adjustment.saturation = options.saturation;
-  recolor.adjustment.value = options.value;
-  recolor.adjustment.space = edit::ColourSpaceFromString(options.space);
-  recolor.feather_px = options.feather;
-  recolor.use_ray_weights = !options.no_weights;
-  edit::ValidateAdjustment(recolor.adjustment);
-  if (!(options.feather >= 0.0f)) throw Error("--feather: expected a width >= 0 pixels");
-  return recolor;
 }
 
 // The light field with the labels to recolour by: the --labels file's, else its own.
@@ -96,7 +78,8 @@ Bundle LoadLabelledInput(const RecolorCommandOptions& options, nlohmann::ordered
 void RunRecolor(const RecolorCommandOptions& options) {
   const Stopwatch stopwatch;
   stages::RecolorStageOptions stage;
-  stage.recolor = RecolorOptionsOf(options);
+  if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
+  stage.recolor = ToRecolorOptions(options.colour_edit);
   stage.bit_depth = options.bit_depth;
   std::error_code ec;
   if (fs::exists(options.out, ec) && fs::equivalent(options.input, options.out, ec))
@@ -136,16 +119,7 @@ void AddRecolorCommand(CLI::App& app) {
   command->add_option("--mask", options->mask,
                       "Select the labels with more than half of their centre-view area inside this mask image "
                       "(centre-view size; white = inside) (default: none)");
-  command->add_option("--hue", options->hue, "Rotate the hue by this many degrees (default: 0)");
-  command->add_option("--saturation", options->saturation, "Multiply saturation (chroma in lch) by this (default: 1)");
-  command->add_option("--value", options->value, "Multiply value (lightness L* in lch) by this (default: 1)");
-  command->add_option("--space", options->space,
-                      "Colour space of the edit: lch (perceptual CIE L*C*h via OpenCV) or hsv (default: lch)");
-  command->add_option("--feather", options->feather,
-                      "Soft transition over this many pixels into neighbouring superpixels, per view, scaled by the "
-                      "ray weights when the input has them (default: 0, hard edges)");
-  command->add_flag("--no-weights", options->no_weights,
-                    "Do not scale the feather band by the input's ray weights (default: scale when present)");
+  AddRecolorArguments(command, options->colour_edit);
   command->add_option("--bit-depth", options->bit_depth,
                       "Bits per sample of a views-folder or ESLF output (previews are 8-bit): 8 or 16 (default: 8)");
   command

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "arguments/refocus_arguments.h"
 #include "command_registry.h"
 #include "input_loading.h"
 #include "lfsp/core/error.h"
@@ -36,8 +37,7 @@ struct RefocusCommandOptions {
   bool no_occlusion = false;
   std::optional<float> shear;
   std::string out_lf;
-  std::string interpolation = "linear";
-  bool no_weights = false;
+  RefocusArguments resampling;
   int bit_depth = 8;
   std::string out;
 };
@@ -58,23 +58,14 @@ std::pair<float, float> StackRange(const RefocusCommandOptions& options, const B
               " records no disparity range and has no disparity map; give --range MIN,MAX or --disparities");
 }
 
-// Disparities beyond this many pixels per view step move every ray out of any view: a typo, not a request.
-constexpr float kMaxDisparity = 1000.0f;
 constexpr int kMaxStack = 1000;
-
-void RequireDisparity(float disparity, const char* option) {
-  if (!std::isfinite(disparity) || std::abs(disparity) > kMaxDisparity)
-    throw Error(std::string(option) + ": " + std::to_string(disparity) + " is not a disparity in -" +
-                std::to_string(static_cast<int>(kMaxDisparity)) + ".." +
-                std::to_string(static_cast<int>(kMaxDisparity)) + " px per view step");
-}
 
 void ValidateOptions(const RefocusCommandOptions& options) {
   if (options.stack < 0 || options.stack > kMaxStack)
     throw Error("--stack: expected a number of slices in 1.." + std::to_string(kMaxStack));
-  for (const float d : options.disparities) RequireDisparity(d, "--disparities");
-  for (const float d : options.range) RequireDisparity(d, "--range");
-  if (options.shear) RequireDisparity(*options.shear, "--shear");
+  for (const float d : options.disparities) RequireRefocusDisparity(d, "--disparities");
+  for (const float d : options.range) RequireRefocusDisparity(d, "--range");
+  if (options.shear) RequireRefocusDisparity(*options.shear, "--shear");
   if (!options.disparities.empty() && options.stack > 0) throw Error("give either --disparities or --stack, not both");
   if (options.shear.has_value() != !options.out_lf.empty())
     throw Error("--shear S and --out-lf OUT go together: give both or neither");
@@ -86,8 +77,7 @@ void ValidateOptions(const RefocusCommandOptions& options) {
 void RunRefocus(const RefocusCommandOptions& options) {
   ValidateOptions(options);
   stages::RefocusStageOptions stage;
-  stage.refocus.interpolation = stages::InterpolationFromName(options.interpolation);
-  stage.refocus.use_ray_weights = !options.no_weights;
+  stage.refocus = ToRefocusOptions(options.resampling);
   stage.occlusion_aware = !options.no_occlusion;
   stage.shear = options.shear;
   stage.sheared_out = options.out_lf;
@@ -159,12 +149,7 @@ void AddRefocusCommand(CLI::App& app) {
   command->add_option("--out-lf", options->out_lf,
                       "Where to write the sheared light field: .h5 bundle (with weights marking rays that came from "
                       "outside a view), .png ESLF or a views folder (default: none)");
-  command
-      ->add_option("--interpolation", options->interpolation,
-                   "Sub-pixel interpolation for refocusing and shearing: linear or cubic (default: linear)")
-      ->check(CLI::IsMember({"linear", "cubic"}));
-  command->add_flag("--no-weights", options->no_weights,
-                    "Ignore the input's per-ray weights (default: rays are weighted by them when present)");
+  AddRefocusArguments(command, options->resampling);
   command->add_option("--bit-depth", options->bit_depth, "Bits per sample of the PNGs written: 8 or 16 (default: 8)");
   command->add_option("--out", options->out, "Output folder (replaced atomically when complete)")->required();
   AddViewsOption(command, options->views);

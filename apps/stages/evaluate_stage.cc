@@ -7,20 +7,30 @@
 
 namespace lfsp::stages {
 
-nlohmann::json EvaluateSegmentationBundle(const Bundle& segmentation, GroundTruth truth,
-                                          segment::EvaluationOptions options, const std::string& source) {
+nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const Labels& labels,
+                                         const DisparityMap* disparity, GroundTruth truth,
+                                         segment::EvaluationOptions options, const std::string& source) {
   segment::EvaluationInputs inputs;
-  inputs.light_field = &segmentation.light_field;
-  inputs.labels = &*segmentation.labels;
+  inputs.light_field = light_field;
+  inputs.labels = &labels;
   inputs.gt_labels = truth.labels;
   inputs.gt_disparity = truth.disparity;
-  inputs.segmentation_disparity = segmentation.disparity ? &*segmentation.disparity : nullptr;
-  options.refocus = options.refocus && segmentation.disparity.has_value();
-  const Metadata& metadata = segmentation.light_field.metadata;
-  if (metadata.contains("lfsp_segment") && metadata["lfsp_segment"].contains("parameters"))
-    options.lfsp = segment::ParamsFromJson(metadata["lfsp_segment"]["parameters"], source + " metadata");
+  inputs.segmentation_disparity = disparity;
+  options.refocus = options.refocus && disparity != nullptr;
+  if (light_field != nullptr) {
+    const Metadata& metadata = light_field->metadata;
+    if (metadata.contains("lfsp_segment") && metadata["lfsp_segment"].contains("parameters"))
+      options.lfsp = segment::ParamsFromJson(metadata["lfsp_segment"]["parameters"], source + " metadata");
+  }
   options.baseline.size = options.lfsp.size;
   return segment::EvaluateSegmentation(inputs, options);
+}
+
+nlohmann::json EvaluateSegmentationBundle(const Bundle& segmentation, GroundTruth truth,
+                                          segment::EvaluationOptions options, const std::string& source) {
+  return EvaluateSegmentationParts(&segmentation.light_field, *segmentation.labels,
+                                   segmentation.disparity ? &*segmentation.disparity : nullptr, truth,
+                                   std::move(options), source);
 }
 
 nlohmann::ordered_json ScoreRun(const DisparityMap& disparity, const Labels& labels, GroundTruth truth,

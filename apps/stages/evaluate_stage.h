@@ -20,6 +20,14 @@ struct GroundTruth {
 nlohmann::json EvaluateSegmentationBundle(const Bundle& segmentation, GroundTruth truth,
                                           segment::EvaluationOptions options, const std::string& source);
 
+// The same from the parts of a segmentation (the Python module's arrays): `labels` made by LFSP on `light_field`
+// (null: no refocus sweep, no baselines) with `disparity` (null: no refocus sweep). The LFSP parameters the sweep
+// re-runs with are the light field's metadata's when it records them (metadata["lfsp_segment"]), else
+// `options.lfsp`.
+nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const Labels& labels,
+                                         const DisparityMap* disparity, GroundTruth truth,
+                                         segment::EvaluationOptions options, const std::string& source);
+
 // The scores of a pipeline run, with no re-runs: the disparity against the true one (HCI metrics), the labels
 // against the true labels and disparity (ScoreLabels). Missing truth leaves its metrics out.
 nlohmann::ordered_json ScoreRun(const DisparityMap& disparity, const Labels& labels, GroundTruth truth,

@@ -20,8 +20,8 @@ namespace {
 // Ground-truth or previously saved disparity stored beside the views.
 constexpr const char* kDisparityNames[] = {"disparity.pfm", "gt_disp_lowres.pfm"};
 
-// NaN or infinite samples have no meaning as light: every stage would turn them into silent garbage (a constant
-// depth map, all-NaN scores), so a light field holding one is refused, naming the first.
+}  // namespace
+
 void RequireFiniteSamples(const LightField& light_field, const std::string& name) {
   const LightFieldShape& shape = light_field.shape();
   const auto first_bad = [](const float* values, std::size_t count) {
@@ -41,8 +41,6 @@ void RequireFiniteSamples(const LightField& light_field, const std::string& name
       first_bad(light_field.weights().data(), light_field.weights().size()) != light_field.weights().size())
     ThrowFileError(name, "holds a non-finite ray weight (NaN or infinity)");
 }
-
-}  // namespace
 
 LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
   std::error_code ec;

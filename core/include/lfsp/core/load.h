@@ -16,6 +16,11 @@ LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // 
 // Loads any supported light-field input into a bundle. For a views folder, a ground-truth disparity PFM beside the
 // views (gt_disp_lowres.pfm, as in the HCI benchmark) is loaded as the bundle's disparity. A light field holding a
 // NaN or infinite sample or ray weight is refused (lfsp::Error naming the file and the first such ray).
+// NaN or infinite samples have no meaning as light: every stage would turn them into silent garbage (a constant
+// depth map, all-NaN scores), so a light field holding one is refused: lfsp::Error naming `name` and the first such
+// ray. LoadLightField checks every input so; so does the Python module for arrays it is given.
+void RequireFiniteSamples(const LightField& light_field, const std::string& name);
+
 struct LoadOptions {
   EslfOptions eslf;           // the angular size of an ESLF image that does not record it
   std::string views_pattern;  // views folders: file naming such as '{row}_{col}.png' ("" = detect, views_naming.h)

@@ -1,0 +1,45 @@
+#include "arguments/decode_arguments.h"
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::cli {
+
+void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
+  command->add_option("--white-images", arguments.white_images,
+                      "Folder of white images, MOD_*.RAW + .TXT or calibration archives data.C.* (default: the "
+                      "capture's folder, searched recursively, so its whites/ sub-folder is found)");
+  command->add_flag("--no-white-image", arguments.no_white_image,
+                    "Estimate the white image (micro-image vignetting) and the lenslet grid from the capture itself "
+                    "instead of looking one up (automatic, with a warning, when no white image matches; always for "
+                    "plain raw images)");
+  AddPlainRawOptions(command, arguments.plain);
+  command->add_option("--demosaic", arguments.demosaic, "gradient | edge-aware | bilinear (default: gradient)");
+  command->add_option("--colour", arguments.colour,
+                      "camera (white balance, colour matrix, exposure bias, sRGB) | linear (devignetted scene-linear "
+                      "RGB) (default: camera)");
+  command->add_flag("--no-hot-pixels", arguments.no_hot_pixels, "Skip hot-pixel correction (default: corrected)");
+  command->add_option("--dehex", arguments.dehex,
+                      "Row-alternation softening against hexagonal artefacts, 0..0.25 (default: 0.1)");
+}
+
+decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& arguments) {
+  decode::CaptureDecodeOptions options;
+  options.white_images = arguments.white_images;
+  options.no_white_image = arguments.no_white_image;
+  options.plain = ToPlainRawOptions(arguments.plain);
+  options.decode.demosaic = decode::DemosaicMethodFromString(arguments.demosaic);
+  options.decode.colour = decode::ColourModeFromString(arguments.colour);
+  options.decode.correct_hot_pixels = !arguments.no_hot_pixels;
+  if (!(arguments.dehex >= 0.0 && arguments.dehex <= 0.25)) throw Error(OptionName("dehex") + " must be in [0, 0.25]");
+  options.decode.dehex = arguments.dehex;
+  return options;
+}
+
+nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
+  return {{"demosaic", arguments.demosaic},
+          {"colour", arguments.colour},
+          {"hot_pixels", !arguments.no_hot_pixels},
+          {"dehex", arguments.dehex}};
+}
+
+}  // namespace lfsp::cli

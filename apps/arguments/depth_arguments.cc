@@ -1,0 +1,71 @@
+#include "arguments/depth_arguments.h"
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::cli {
+
+void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
+  depth::DepthOptions& method = arguments.method;
+  command->add_option(
+      "--dmin", arguments.dmin,
+      "Smallest disparity (px per view step); default: disp_min of parameters.cfg / bundle metadata, else "
+      "estimated from the views (a coarse sweep, logged)");
+  command->add_option("--dmax", arguments.dmax, "Largest disparity; default: disp_max of the metadata, else estimated");
+  command->add_option("--labels", method.labels, "Number of disparity labels")
+      ->capture_default_str()
+      ->check(CLI::Range(3, 1024));
+  command->add_flag("--no-occlusion", arguments.no_occlusion,
+                    "Use all views everywhere (no edge-split of the angular patch); default: off");
+  command->add_flag("--wta", arguments.winner_take_all,
+                    "Plain winner-take-all on the cost volume: no aggregation, no median (baseline); default: off");
+  command->add_flag("--plane-fit", method.plane_fit,
+                    "Slanted-plane refinement of textureless pixels per superpixel (antinous: BadPix 0.07 5.9 -> "
+                    "5.0 %, but worse on thin occluders); default: off");
+  command
+      ->add_option("--occlusion-radius", method.occlusion.radius,
+                   "Pixels within this distance of a centre-view edge use the better half of the views; 0 = "
+                   "automatic (half the largest shift across the angular patch over the disparity range)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--p1", method.sgm.p1, "SGM penalty for a one-label step")->capture_default_str();
+  command->add_option("--p2", method.sgm.p2, "SGM penalty for a larger jump (lowered across colour edges)")
+      ->capture_default_str();
+  command
+      ->add_option("--excluded-ring", method.cost.excluded_ring,
+                   "Leave the views within N steps of the centre out of the cost; -1 = automatic (1 for light "
+                   "fields decoded from a lenslet capture, whose neighbouring views share sensor pixels and noise)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 16));
+  command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--detail-weight", method.cost.detail_weight,
+                   "Weight of the detail term of the cost (the locally normalised high-pass grey image); -1 = "
+                   "automatic: 1 on views that are not presmoothed, else the band's signal against its noise, "
+                   "m^2 / (m^2 + (16 n)^2), m the median local RMS of the centre view's detail, n the noise floor's "
+                   "share of it (0.15-0.2 on full-size lenslet decodes with weak texture)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1.0, 100.0));
+  command
+      ->add_option("--presmooth", method.presmooth_sigma,
+                   "Gaussian smoothing of every view before matching, pixels; -1 = automatic from the estimated noise "
+                   "(none on clean views, up to 2.5 px in low light), 0 = off")
+      ->capture_default_str()
+      ->check(CLI::Range(-1.0, 10.0));
+  command->add_option("--median-radius", method.median_radius, "Weighted-median refinement radius (0 = off)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
+depth::DepthOptions ToDepthOptions(const DepthArguments& arguments) {
+  depth::DepthOptions method = arguments.method;
+  if (arguments.dmin.has_value() != arguments.dmax.has_value())
+    throw Error("lfsp depth: give both " + OptionName("dmin") + " and " + OptionName("dmax"));
+  if (arguments.dmin) method.range = DisparityRange{*arguments.dmin, *arguments.dmax};
+  if (arguments.no_occlusion) method.occlusion_handling = false;
+  if (arguments.winner_take_all) method.regularise = false;
+  return method;
+}
+
+}  // namespace lfsp::cli
