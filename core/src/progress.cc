@@ -7,9 +7,18 @@
 namespace lfsp {
 namespace {
 int g_enabled_override = -1;  // -1: decide by terminal, 0: off, 1: on
-}
+Progress::Observer g_observer;
+std::atomic<bool> g_cancellation_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "RequestCancellation must be async-signal-safe");
+}  // namespace
 
 void Progress::SetEnabled(bool enabled) { g_enabled_override = enabled ? 1 : 0; }
+
+void Progress::SetObserver(Observer observer) { g_observer = std::move(observer); }
+
+void RequestCancellation() { g_cancellation_requested.store(true); }
+void ClearCancellation() { g_cancellation_requested.store(false); }
+bool CancellationRequested() { return g_cancellation_requested.load(); }
 
 Progress::Progress(std::string label, std::size_t total)
     : label_(std::move(label)),
@@ -20,7 +29,9 @@ Progress::Progress(std::string label, std::size_t total)
 Progress::~Progress() { Finish(); }
 
 void Progress::Tick(std::size_t steps) {
+  if (CancellationRequested()) throw Cancelled();
   const std::size_t done = done_.fetch_add(steps) + steps;
+  if (g_observer) g_observer(label_, done, total_);
   if (!active_) return;
   const long long now =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();

@@ -3,6 +3,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <exception>
+#include <functional>
 #include <string>
 
 namespace lfsp {
@@ -21,6 +23,11 @@ class Progress {
 
   static void SetEnabled(bool enabled);  // overrides the terminal check (the CLI's -q turns it off)
 
+  // Also reports every Tick to `observer` (label, steps done, total), on the thread that ticks; empty = none. The
+  // Python module passes a user's progress callback through this.
+  using Observer = std::function<void(const std::string& label, std::size_t done, std::size_t total)>;
+  static void SetObserver(Observer observer);
+
  private:
   void Draw(std::size_t done);
   std::string label_;
@@ -31,5 +38,16 @@ class Progress {
   bool active_;
   bool finished_ = false;
 };
+
+// Long work can be stopped from outside (the Python module's Ctrl-C): after RequestCancellation(), the next
+// Progress::Tick() of any loop throws Cancelled. Ticks happen between the steps of a stage, outside parallel
+// regions, so the exception unwinds through ordinary code and every resource is released on the way out.
+class Cancelled : public std::exception {
+ public:
+  const char* what() const noexcept override { return "cancelled"; }
+};
+void RequestCancellation();  // async-signal-safe: sets one lock-free atomic flag
+void ClearCancellation();
+bool CancellationRequested();
 
 }  // namespace lfsp
