@@ -46,6 +46,10 @@ std::pair<int, int> HciAngularSize(const fs::path& folder, std::size_t view_coun
     const Metadata metadata = ReadHciConfig(config);
     if (metadata.contains("extrinsics")) {
       const Metadata& extrinsics = metadata["extrinsics"];
+      // A declared angular size that is not a count is garbage, not an absent one: refuse rather than guess.
+      for (const char* key : {"num_cams_x", "num_cams_y"})
+        if (extrinsics.contains(key) && !extrinsics[key].is_number_integer())
+          ThrowFileError(config.string(), std::string(key) + " = " + extrinsics[key].dump() + " is not a whole number");
       if (extrinsics.contains("num_cams_x") && extrinsics.contains("num_cams_y") &&
           extrinsics["num_cams_x"].is_number_integer() && extrinsics["num_cams_y"].is_number_integer()) {
         // Read wide: 4294967303 must not wrap to 7.
