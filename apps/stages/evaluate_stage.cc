@@ -9,7 +9,8 @@ namespace lfsp::stages {
 
 nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const Labels& labels,
                                          const DisparityMap* disparity, GroundTruth truth,
-                                         segment::EvaluationOptions options, const std::string& source) {
+                                         segment::EvaluationOptions options, const std::string& source,
+                                         bool use_recorded_parameters) {
   segment::EvaluationInputs inputs;
   inputs.light_field = light_field;
   inputs.labels = &labels;
@@ -17,7 +18,7 @@ nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const La
   inputs.gt_disparity = truth.disparity;
   inputs.segmentation_disparity = disparity;
   options.refocus = options.refocus && disparity != nullptr;
-  if (light_field != nullptr) {
+  if (light_field != nullptr && use_recorded_parameters) {
     const Metadata& metadata = light_field->metadata;
     if (metadata.contains("lfsp_segment") && metadata["lfsp_segment"].contains("parameters"))
       options.lfsp = segment::ParamsFromJson(metadata["lfsp_segment"]["parameters"], source + " metadata");

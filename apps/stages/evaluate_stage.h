@@ -22,11 +22,12 @@ nlohmann::json EvaluateSegmentationBundle(const Bundle& segmentation, GroundTrut
 
 // The same from the parts of a segmentation (the Python module's arrays): `labels` made by LFSP on `light_field`
 // (null: no refocus sweep, no baselines) with `disparity` (null: no refocus sweep). The LFSP parameters the sweep
-// re-runs with are the light field's metadata's when it records them (metadata["lfsp_segment"]), else
-// `options.lfsp`.
+// re-runs with are the light field's metadata's when it records them (metadata["lfsp_segment"]) and
+// `use_recorded_parameters`, else `options.lfsp`.
 nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const Labels& labels,
                                          const DisparityMap* disparity, GroundTruth truth,
-                                         segment::EvaluationOptions options, const std::string& source);
+                                         segment::EvaluationOptions options, const std::string& source,
+                                         bool use_recorded_parameters = true);
 
 // The scores of a pipeline run, with no re-runs: the disparity against the true one (HCI metrics), the labels
 // against the true labels and disparity (ScoreLabels). Missing truth leaves its metrics out.

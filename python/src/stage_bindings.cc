@@ -257,6 +257,9 @@ void BindEvaluate(py::module_& m) {
         options.lfsp = params;
         const Labels labels = LabelsFromArray(labels_array, "labels");
         const Bundle* lf = light_field.is_none() ? nullptr : &light_field.cast<const Bundle&>();
+        Bundle central_views;  // labels made on the well-lit central views (as segment chooses them) score those
+        if (lf != nullptr && labels.shape().nu < lf->light_field.shape().nu)
+          lf = &ChosenViews(*lf, labels.shape().nu, central_views);
         if (lf != nullptr) RequireLabelsMatch(labels, lf->light_field.shape(), "labels");
         std::optional<DisparityMap> segmentation_disparity, truth_disparity;
         if (!disparity.is_none()) segmentation_disparity = DisparityFromArray(disparity, "disparity");
@@ -264,19 +267,14 @@ void BindEvaluate(py::module_& m) {
         std::optional<Labels> truth_labels;
         if (!gt_labels.is_none()) truth_labels = LabelsFromArray(gt_labels, "gt_labels");
         // Explicit LFSP keywords win over the parameters a segmentation bundle's metadata records.
-        std::optional<Bundle> without_record;
-        if (lf != nullptr &&
-            AnyKeywordOf(keywords, [&](CLI::App* app) { cli::AddLfspParameters(app, options.lfsp); })) {
-          without_record.emplace(*lf);
-          without_record->light_field.metadata.erase("lfsp_segment");
-          lf = &*without_record;
-        }
+        segment::LfspParams scratch;
+        const bool use_recorded = !AnyKeywordOf(keywords, [&](CLI::App* app) { cli::AddLfspParameters(app, scratch); });
         const stages::GroundTruth truth{truth_disparity ? &*truth_disparity : nullptr,
                                         truth_labels ? &*truth_labels : nullptr};
         const nlohmann::json report = RunLongWork([&] {
           return stages::EvaluateSegmentationParts(lf ? &lf->light_field : nullptr, labels,
                                                    segmentation_disparity ? &*segmentation_disparity : nullptr, truth,
-                                                   options, "light_field");
+                                                   options, "light_field", use_recorded);
         });
         return JsonToPython(report);
       },
