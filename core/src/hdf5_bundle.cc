@@ -1,6 +1,7 @@
 #include "lfsp/core/hdf5_bundle.h"
 
 #include "hdf5_chunks.h"
+#include "hdf5_limits.h"
 
 #include <H5Cpp.h>
 
@@ -20,7 +21,9 @@ namespace {
 
 constexpr int kFormatVersion = 1;
 
+// The dataset's shape, after checking that reading it would not allocate more than the file can justify.
 std::vector<hsize_t> Dimensions(const H5::DataSet& dataset) {
+  CheckDeclaredStorage(dataset);
   const H5::DataSpace space = dataset.getSpace();
   std::vector<hsize_t> dims(static_cast<std::size_t>(space.getSimpleExtentNdims()));
   space.getSimpleExtentDims(dims.data());

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hdf5_limits.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
@@ -77,6 +78,7 @@ LightField ReadV73(const fs::path& path) {
     const H5::H5File file(name, H5F_ACC_RDONLY);
     if (!file.nameExists(kVariable)) ThrowFileError(name, "MATLAB v7.3 file without a variable 'LF'");
     const H5::DataSet dataset = file.openDataSet(kVariable);
+    CheckDeclaredStorage(dataset);
     const H5::DataSpace space = dataset.getSpace();
     const int rank = space.getSimpleExtentNdims();
     std::vector<hsize_t> reversed(static_cast<std::size_t>(std::max(rank, 0)));

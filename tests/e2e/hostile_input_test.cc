@@ -293,5 +293,16 @@ TEST(HostileInput, ConvertToPfmWritesTheDisparityOrRefuses) {
   EXPECT_FALSE(fs::exists(temp / "views.jpg"));
 }
 
+// Found by make fuzz: a 4.9 KB v7.3 .mat whose LF claims 4-GiB floats made HDF5 allocate (and touch) 4.3 GB.
+TEST(HostileInput, HdfNumbersOfAbsurdSizeAreRefusedBeforeReading) {
+  const TempDir temp;
+  const fs::path source =
+      testing::SourceDir() / "tests" / "core" / "fuzz" / "corpus" / "mat" / "huge_float_type_v73.mat";
+  for (const char* name : {"lf.mat", "lf.h5"}) {
+    fs::copy_file(source, temp / name);
+    ExpectRefused(RunLfsp({"info", (temp / name).string()}), "bytes each (at most 8)");
+  }
+}
+
 }  // namespace
 }  // namespace lfsp
