@@ -1,0 +1,74 @@
+#include "recolor_request.h"
+
+#include <charconv>
+#include <system_error>
+
+#include "input_loading.h"
+#include "lfsp/core/error.h"
+#include "lfsp/edit/colour_adjust.h"
+#include "view_selection.h"
+
+namespace lfsp::cli {
+namespace {
+
+// The shortest text that parses back to exactly `value`.
+std::string ExactNumber(float value) {
+  char buffer[32];
+  const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string JoinedIds(const std::vector<std::int32_t>& ids) {
+  std::string text;
+  for (const std::int32_t id : ids) text += (text.empty() ? "" : ",") + std::to_string(id);
+  return text;
+}
+
+}  // namespace
+
+edit::RecolorOptions RecolorOptionsOf(const RecolorRequest& request) {
+  if (request.bit_depth != 8 && request.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
+  edit::RecolorOptions recolor;
+  recolor.adjustment.hue_degrees = request.hue;
+  recolor.adjustment.saturation = request.saturation;
+  recolor.adjustment.value = request.value;
+  recolor.adjustment.space = edit::ColourSpaceFromString(request.space);
+  recolor.feather_px = request.feather;
+  recolor.use_ray_weights = !request.no_weights;
+  edit::ValidateAdjustment(recolor.adjustment);
+  if (!(request.feather >= 0.0f)) throw Error("--feather: expected a width >= 0 pixels");
+  return recolor;
+}
+
+Bundle LoadLabelledInput(const RecolorRequest& request, nlohmann::ordered_json& summary) {
+  Bundle bundle = LoadInput(request.input);
+  if (!request.labels.empty()) {
+    bundle.labels = ReadLabels(request.labels);
+  } else if (!bundle.labels) {
+    throw Error(request.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
+  }
+  // Labels made on the well-lit central views (as `lfsp segment` chooses them) select the same views here.
+  const int label_views = bundle.labels->shape().nu;
+  const int requested =
+      request.views > 0 ? request.views : (label_views < bundle.light_field.shape().nu ? label_views : 0);
+  summary["views"] = SelectViews(bundle, requested, request.input);
+  summary["labels"] = request.labels.empty() ? request.input : request.labels;
+  RequireLabelsMatch(*bundle.labels, bundle.light_field.shape(), summary["labels"].get<std::string>());
+  return bundle;
+}
+
+std::vector<std::string> RecolorCommandLine(const RecolorRequest& request) {
+  std::vector<std::string> arguments = {"recolor", request.input};
+  if (!request.labels.empty()) arguments.insert(arguments.end(), {"--labels", request.labels});
+  if (request.views > 0) arguments.insert(arguments.end(), {"--views", std::to_string(request.views)});
+  arguments.insert(arguments.end(),
+                   {"--label-ids", JoinedIds(request.label_ids), "--hue", ExactNumber(request.hue), "--saturation",
+                    ExactNumber(request.saturation), "--value", ExactNumber(request.value), "--space", request.space,
+                    "--feather", ExactNumber(request.feather)});
+  if (request.no_weights) arguments.push_back("--no-weights");
+  if (request.bit_depth != 8) arguments.insert(arguments.end(), {"--bit-depth", std::to_string(request.bit_depth)});
+  arguments.insert(arguments.end(), {"--out", request.out});
+  return arguments;
+}
+
+}  // namespace lfsp::cli
