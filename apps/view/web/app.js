@@ -95,8 +95,13 @@ function drawFrame() {
   drawEpis();
   drawViewGrid(data, state, $('view-grid'));
   drawReadout();
-  const elapsed = performance.now() - pendingSince;
-  if (pendingSource) window.lfspStats.frames.push({ source: pendingSource, ms: elapsed });
+  const since = pendingSince, elapsed = performance.now() - since;
+  if (pendingSource) {
+    // ms: the change drawn; presentedMs: the next frame begins, so the browser has shown this one.
+    const record = { source: pendingSource, ms: elapsed, presentedMs: null };
+    window.lfspStats.frames.push(record);
+    requestAnimationFrame(() => { record.presentedMs = performance.now() - since; });
+  }
   $('timing').textContent = `last frame ${elapsed.toFixed(1)} ms after the change` +
                             (window.lfspStats.loadMs ? ` · loaded in ${(window.lfspStats.loadMs / 1000).toFixed(2)} s` : '');
   pendingSince = null;

@@ -69,21 +69,38 @@ function refocusedImage(data, state) {
   const N = W * H, uc = Math.floor(nu / 2), vc = Math.floor(nv / 2);
   const sum = new Float32Array(N * 3), count = new Uint16Array(N), colour = [0, 0, 0];
   const perPixel = state.refocus.allInFocus && data.disparity;
+  const add = (p, q) => {
+    let r = views[3 * q], g = views[3 * q + 1], b = views[3 * q + 2];
+    if (edit && labels && isSelected(state, labels[q])) {
+      edit.apply(r, g, b, edit, 1, colour);
+      r = colour[0]; g = colour[1]; b = colour[2];
+    }
+    sum[3 * p] += r; sum[3 * p + 1] += g; sum[3 * p + 2] += b;
+    count[p] += 1;
+  };
   for (let v = 0; v < nv; ++v) for (let u = 0; u < nu; ++u) {
     const base = (v * nu + u) * N;
-    for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
-      const p = y * W + x;
-      const d = perPixel ? data.disparity[p] : state.refocus.disparity;
-      const sx = Math.round(x - (u - uc) * d), sy = Math.round(y - (v - vc) * d);
-      if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
-      const q = base + sy * W + sx;
-      let r = views[3 * q], g = views[3 * q + 1], b = views[3 * q + 2];
-      if (edit && labels && isSelected(state, labels[q])) {
-        edit.apply(r, g, b, edit, 1, colour);
-        r = colour[0]; g = colour[1]; b = colour[2];
+    if (perPixel) {
+      for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
+        const p = y * W + x, d = data.disparity[p];
+        const sx = Math.round(x - (u - uc) * d), sy = Math.round(y - (v - vc) * d);
+        if (sx >= 0 && sy >= 0 && sx < W && sy < H) add(p, base + sy * W + sx);
       }
-      sum[3 * p] += r; sum[3 * p + 1] += g; sum[3 * p + 2] += b;
-      count[p] += 1;
+      continue;
+    }
+    // One disparity: the whole view moves by one whole-pixel shift (nearest neighbour, as a preview).
+    const dx = Math.round((u - uc) * state.refocus.disparity), dy = Math.round((v - vc) * state.refocus.disparity);
+    const x0 = Math.max(0, dx), x1 = Math.min(W, W + dx);
+    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) {
+      const from = base + (y - dy) * W - dx;
+      if (edit && labels) {
+        for (let x = x0; x < x1; ++x) add(y * W + x, from + x);
+        continue;
+      }
+      for (let x = x0, p = y * W + x0, q = from + x0; x < x1; ++x, ++p, ++q) {  // no edit: the plain sum
+        sum[3 * p] += views[3 * q]; sum[3 * p + 1] += views[3 * q + 1]; sum[3 * p + 2] += views[3 * q + 2];
+        count[p] += 1;
+      }
     }
   }
   const rgb = new Uint8ClampedArray(N * 3);
