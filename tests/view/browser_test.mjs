@@ -2,7 +2,8 @@
 //  1. on the bundled sample: click a superpixel, move the hue slider with the keyboard, and check in the page's
 //     canvas that pixels of that superpixel changed in two different views while every other pixel stayed; then
 //     export, run the exported `lfsp recolor` command line and compare the two light fields byte for byte;
-//  2. on HCI antinous (9x9x512x512, when the shared data is there): the load time and the time from a slider
+//  2. on a `lfsp pipeline` output folder of the sample: the depth and confidence are shown;
+//  3. on HCI antinous (9x9x512x512, when the shared data is there): the load time and the time from a slider
 //     change to the frame that shows it (printed, not asserted).
 //   node browser_test.mjs LFSP SAMPLE_LIGHT_FIELD WORK_DIR [ANTINOUS_DIR] [--screenshots DIR]
 
@@ -177,6 +178,31 @@ async function sampleTest() {
   }
 }
 
+// A `lfsp pipeline` output folder: its segmentation.h5, disparity and confidence are found and shown.
+async function pipelineFolderTest() {
+  const folder = path.join(work, 'pipeline');
+  const run = await runLfsp(lfsp, ['-q', 'pipeline', sample, '--out', folder]);
+  check(run.code === 0 && run.stdout.includes(`view:   lfsp view ${folder}`), `lfsp pipeline prints the view command`);
+  const viewer = await startViewer(lfsp, [folder, '--out', path.join(work, 'export_pipeline')]);
+  try {
+    const meta = await (await fetch(`${viewer.url}api/meta`)).json();
+    check(meta.input === path.join(folder, 'segmentation.h5') && meta.label_bytes > 0 && meta.has_disparity &&
+          meta.has_confidence, 'a pipeline folder gives its segmentation.h5, labels, disparity and confidence');
+    const page = await openViewer(viewer);
+    const image = await canvasPixels(page);
+    for (const show of ['disparity', 'confidence']) {
+      await page.click(`input[name=show][value=${show}]`);
+      await nextFrame(page);
+      const shown = await canvasPixels(page);
+      const bar = await page.$eval('#colour-bar-box', (box) => box.classList.contains('visible'));
+      check(bar && shown.some((value, i) => value !== image[i]), `shows the ${show} with a colour bar`);
+    }
+    await page.close();
+  } finally {
+    stopViewer(viewer);
+  }
+}
+
 async function antinousTest() {
   const segmentation = path.join(work, 'antinous_segmentation.h5');
   let started = performance.now();
@@ -235,6 +261,7 @@ async function antinousTest() {
 
 try {
   await sampleTest();
+  await pipelineFolderTest();
   if (antinous && fs.existsSync(antinous)) await antinousTest();
   else console.log('antinous: shared data not found, timing part skipped');
   console.log('browser test: all checks passed');
