@@ -40,8 +40,7 @@ edit::RecolorOptions RecolorOptionsOf(const RecolorRequest& request) {
   return recolor;
 }
 
-Bundle LoadLabelledInput(const RecolorRequest& request, nlohmann::ordered_json& summary) {
-  Bundle bundle = LoadInput(request.input);
+void AttachLabels(Bundle& bundle, const RecolorRequest& request, nlohmann::ordered_json& summary) {
   if (!request.labels.empty()) {
     bundle.labels = ReadLabels(request.labels);
   } else if (!bundle.labels) {
@@ -54,6 +53,11 @@ Bundle LoadLabelledInput(const RecolorRequest& request, nlohmann::ordered_json& 
   summary["views"] = SelectViews(bundle, requested, request.input);
   summary["labels"] = request.labels.empty() ? request.input : request.labels;
   RequireLabelsMatch(*bundle.labels, bundle.light_field.shape(), summary["labels"].get<std::string>());
+}
+
+Bundle LoadLabelledInput(const RecolorRequest& request, nlohmann::ordered_json& summary) {
+  Bundle bundle = LoadInput(request.input);
+  AttachLabels(bundle, request, summary);
   return bundle;
 }
 

@@ -31,9 +31,12 @@ struct RecolorRequest {
 // The library's options for the request's adjustment; throws lfsp::Error naming the option when one is invalid.
 edit::RecolorOptions RecolorOptionsOf(const RecolorRequest& request);
 
-// The request's light field with the labels to recolour by (the --labels file's, else its own), cut to the views
-// the labels were made on, as `lfsp recolor` reads it. Records the views and labels chosen in `summary`. Throws
-// lfsp::Error naming the input when it has no labels and none are given.
+// Gives `bundle` (the request's light field, as loaded) the labels to recolour by, the --labels file's else its
+// own, and cuts both to the views the labels were made on, as `lfsp recolor` does. Records the views and labels
+// chosen in `summary`. Throws lfsp::Error naming the input when it has no labels and none are given.
+void AttachLabels(Bundle& bundle, const RecolorRequest& request, nlohmann::ordered_json& summary);
+
+// The request's light field, loaded and given its labels (AttachLabels).
 Bundle LoadLabelledInput(const RecolorRequest& request, nlohmann::ordered_json& summary);
 
 // The arguments after `lfsp` that make `lfsp recolor` carry out the request by label ids: `recolor INPUT

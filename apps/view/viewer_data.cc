@@ -35,6 +35,14 @@ fs::path ConfidenceBeside(const fs::path& disparity) {
   return fs::exists(confidence, ec) ? confidence : fs::path();
 }
 
+// The page draws a centre-view map over every view: it must have the views' size.
+void RequireViewSize(const std::optional<DisparityMap>& map, const fs::path& path, const LightFieldShape& shape) {
+  if (!map || (map->width() == shape.width && map->height() == shape.height)) return;
+  ThrowFileError(path.empty() ? "the input's disparity" : path.string(),
+                 "a map of " + std::to_string(map->width()) + "x" + std::to_string(map->height()) +
+                     " does not match views of " + std::to_string(shape.width) + "x" + std::to_string(shape.height));
+}
+
 std::vector<std::uint8_t> DisplayViews(const LightField& light_field) {
   const LightFieldShape& shape = light_field.shape();
   std::vector<std::uint8_t> bytes(shape.Views() * shape.ViewPixels() * 3);
@@ -113,26 +121,19 @@ ViewerData LoadViewerData(const ViewerSources& sources) {
   data.sources = sources;
   data.recolor_base.input = sources.light_field.string();
   data.recolor_base.labels = sources.labels.string();
-  nlohmann::ordered_json loading;
-  try {
-    data.bundle = cli::LoadLabelledInput(data.recolor_base, loading);
-  } catch (const Error&) {
+  data.bundle = cli::LoadInput(sources.light_field);
+  if (data.bundle.labels || !sources.labels.empty()) {
+    nlohmann::ordered_json loading;
+    cli::AttachLabels(data.bundle, data.recolor_base, loading);
+  } else {
     // No labels anywhere: the light field can still be looked at (and refocused), not edited.
-    if (!sources.labels.empty()) throw;
-    data.bundle = cli::LoadInput(sources.light_field);
-    if (data.bundle.labels) throw;  // the labels were there but wrong: say so
     cli::SelectViews(data.bundle, 0, sources.light_field.string());
     spdlog::info("{}: no labels: viewing only (give --labels SEG.h5 to select and edit)", sources.light_field.string());
   }
   if (!sources.disparity.empty()) data.bundle.disparity = ReadPfm(sources.disparity);
   if (!sources.confidence.empty()) data.confidence = ReadPfm(sources.confidence);
-  const LightFieldShape& shape = data.bundle.light_field.shape();
-  for (const auto* map : {&data.bundle.disparity, &data.confidence}) {
-    if (*map && ((*map)->width() != shape.width || (*map)->height() != shape.height))
-      throw Error(sources.disparity.string() + ": disparity of " + std::to_string((*map)->width()) + "x" +
-                  std::to_string((*map)->height()) + " does not match views of " + std::to_string(shape.width) + "x" +
-                  std::to_string(shape.height));
-  }
+  RequireViewSize(data.bundle.disparity, sources.disparity, data.bundle.light_field.shape());
+  RequireViewSize(data.confidence, sources.confidence, data.bundle.light_field.shape());
   data.views_rgb8 = DisplayViews(data.bundle.light_field);
   if (data.bundle.labels) data.labels_packed = PackLabels(*data.bundle.labels, data.label_bytes);
   data.meta = MetaOf(data);
