@@ -79,11 +79,17 @@ let image = null;
 let pendingSince = null;  // when the oldest change not yet drawn happened
 let pendingSource = null;
 
+// Draws at the next animation frame, once for all changes until then. `source` names a change to time (a slider,
+// the view, the selection); null for cursor moves, which are not timed: a timed change that joins a pending cursor
+// redraw is timed from itself.
 function requestDraw(source) {
   if (pendingSince === null) {
     pendingSince = performance.now();
     pendingSource = source;
     requestAnimationFrame(drawFrame);
+  } else if (source && !pendingSource) {
+    pendingSince = performance.now();
+    pendingSource = source;
   }
 }
 
