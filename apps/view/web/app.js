@@ -132,7 +132,13 @@ function drawEpis() {
   }
 }
 
+function placeCursorLines() {
+  $('cursor-row').style.top = `${state.panY + (state.cursor.y + 0.5) * state.zoom}px`;
+  $('cursor-column').style.left = `${state.panX + (state.cursor.x + 0.5) * state.zoom}px`;
+}
+
 function drawReadout() {
+  placeCursorLines();
   const { x, y } = state.cursor, N = data.width * data.height;
   const parts = [`view (${state.view.u}, ${state.view.v})`, `x ${x} y ${y}`];
   if (data.labels) {
@@ -153,6 +159,7 @@ function applyTransform() {
   $('view').style.transform = `translate(${state.panX}px, ${state.panY}px) scale(${state.zoom})`;
   $('epi-horizontal').style.transform = `translate(${state.panX}px, 0) scale(${state.zoom}, ${EPI_THICKNESS / data.nu})`;
   $('epi-vertical').style.transform = `translate(0, ${state.panY}px) scale(${EPI_THICKNESS / data.nv}, ${state.zoom})`;
+  placeCursorLines();
 }
 
 function fitToViewport() {
