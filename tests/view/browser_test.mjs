@@ -84,6 +84,29 @@ async function stepSlider(page, id, steps) {
                        before, id);
 }
 
+// Drags the slider's thumb with the mouse from its middle, `steps` moves of 8 px, waiting for the frame of each,
+// then lets go; returns the frames (sources `id` while dragging, `id`-release after).
+async function dragSlider(page, id, steps) {
+  const box = await page.$eval(`#${id}`, (slider) => slider.getBoundingClientRect().toJSON());
+  const y = box.top + box.height / 2;
+  let x = box.left + box.width / 2;
+  const before = await page.evaluate(() => window.lfspStats.frames.length);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let i = 1; i <= steps; ++i) {
+    x += 8;
+    await page.mouse.move(x, y);
+    await page.waitForFunction(
+      (n, source, count) => window.lfspStats.frames.slice(n).filter((f) => f.source === source).length >= count, {},
+      before, id, i);
+  }
+  await page.mouse.up();
+  await page.waitForFunction((n, source) => window.lfspStats.frames.slice(n).some((f) => f.source === source), {},
+                             before, `${id}-release`);
+  await nextFrame(page);
+  return page.evaluate((n) => window.lfspStats.frames.slice(n), before);
+}
+
 // The label at centre-view pixel (x, y) of the largest superpixel there (a big target, well inside its edges).
 function largestCentreLabel(meta, labels) {
   const N = meta.width * meta.height;
@@ -232,6 +255,10 @@ async function antinousTest() {
       await nextFrame(page);
       viewSwitch.push(await page.evaluate(() => window.lfspStats.frames.at(-1)));
     }
+    // Shift-and-sum (JS on the CPU): dragging sums 25 of the 81 views per frame, letting go all 81.
+    await page.click('#refocus');
+    const refocus = await dragSlider(page, 'focus', 6);
+    await page.click('#refocus');
     const summary = {
       light_field: `${meta.nu}x${meta.nv}x${meta.width}x${meta.height}`,
       server_load_s: +(serverStart / 1000).toFixed(2),
@@ -239,6 +266,8 @@ async function antinousTest() {
       hue_slider_to_frame_ms: timings(hue),
       feather_slider_to_frame_ms: timings(feather),
       view_switch_to_frame_ms: timings(viewSwitch),
+      refocus_drag_to_frame_ms: timings(refocus.filter((f) => f.source === 'focus')),
+      refocus_release_to_frame_ms: timings(refocus.filter((f) => f.source === 'focus-release')),
     };
     console.log(`antinous timings: ${JSON.stringify(summary)}`);
     fs.writeFileSync(path.join(work, 'antinous_timings.json'), `${JSON.stringify(summary, null, 2)}\n`);

@@ -17,7 +17,7 @@ const state = {
   params: { space: 'lch', hue: 0, saturation: 1, value: 1, feather: 0 },
   edit: null,
   editVersion: 0,
-  refocus: { on: false, disparity: 0, allInFocus: false },
+  refocus: { on: false, disparity: 0, allInFocus: false, coarse: false },
   zoom: 1, panX: 0, panY: 0,
 };
 // What a page test or a user reads back: load time and slider-to-frame times (ms).
@@ -394,11 +394,14 @@ function bindControls() {
   $('redo').addEventListener('click', redo);
   $('refocus').addEventListener('change', () => { state.refocus.on = $('refocus').checked; requestDraw('refocus'); });
   $('all-in-focus').addEventListener('change', () => { state.refocus.allInFocus = $('all-in-focus').checked; requestDraw('refocus'); });
+  // Dragging previews with fewer views (render.js refocusedImage); letting go sums them all.
   $('focus').addEventListener('input', () => {
     state.refocus.disparity = Number($('focus').value);
+    state.refocus.coarse = true;
     document.querySelector('output[for=focus]').value = $('focus').value;
     requestDraw('focus');
   });
+  $('focus').addEventListener('change', () => { state.refocus.coarse = false; requestDraw('focus-release'); });
   $('export').addEventListener('click', exportEdit);
   window.addEventListener('keydown', (event) => {
     if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement) return;

@@ -60,25 +60,32 @@ function paintMap(values, range, rgba) {
 }
 
 // Shift-and-sum over every view at one disparity, or at each pixel's own (all in focus), with the edit applied to
-// selected rays; cached until any of those change.
+// selected rays; cached until any of those change. While the slider is dragged (state.refocus.coarse) only every
+// other view in each direction (25 of 9x9, spanning the same aperture) and every other pixel in each direction are
+// summed; letting go sums all at full resolution.
 function refocusedImage(data, state) {
-  const edit = state.edit;
-  const key = `${state.refocus.allInFocus ? 'aif' : state.refocus.disparity}/${state.selectionVersion}/${state.editVersion}`;
+  const { coarse, allInFocus, disparity } = state.refocus;
+  const key = `${allInFocus ? 'aif' : disparity}/${coarse}/${state.selectionVersion}/${state.editVersion}`;
   if (state.refocusCache && state.refocusCache.key === key) return state.refocusCache.rgb;
-  const { width: W, height: H, nu, nv, views, labels } = data;
+  const { width: W, height: H, nu, nv, views } = data;
   const N = W * H, uc = Math.floor(nu / 2), vc = Math.floor(nv / 2);
-  const sum = new Float32Array(N * 3), count = new Uint16Array(N), colour = [0, 0, 0];
-  const perPixel = state.refocus.allInFocus && data.disparity;
+  const sum = new Float32Array(N * 3), count = new Uint16Array(N);
+  const perPixel = allInFocus && data.disparity;
+  const step = coarse && !perPixel ? 2 : 1;  // views and pixels
+  const evenIfCoarse = (i) => i + (i % step);
+  const edit = state.edit && data.labels ? state.edit : null;
+  const selected = state.selected, labels = data.labels, colour = [0, 0, 0];
+  // Adds ray q (edited when selected) to pixel p.
   const add = (p, q) => {
     let r = views[3 * q], g = views[3 * q + 1], b = views[3 * q + 2];
-    if (edit && labels && isSelected(state, labels[q])) {
+    if (edit && selected[labels[q]] === 1) {
       edit.apply(r, g, b, edit, 1, colour);
       r = colour[0]; g = colour[1]; b = colour[2];
     }
     sum[3 * p] += r; sum[3 * p + 1] += g; sum[3 * p + 2] += b;
     count[p] += 1;
   };
-  for (let v = 0; v < nv; ++v) for (let u = 0; u < nu; ++u) {
+  for (let v = vc % step; v < nv; v += step) for (let u = uc % step; u < nu; u += step) {
     const base = (v * nu + u) * N;
     if (perPixel) {
       for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
@@ -89,24 +96,21 @@ function refocusedImage(data, state) {
       continue;
     }
     // One disparity: the whole view moves by one whole-pixel shift (nearest neighbour, as a preview).
-    const dx = Math.round((u - uc) * state.refocus.disparity), dy = Math.round((v - vc) * state.refocus.disparity);
-    const x0 = Math.max(0, dx), x1 = Math.min(W, W + dx);
-    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) {
-      const from = base + (y - dy) * W - dx;
-      if (edit && labels) {
-        for (let x = x0; x < x1; ++x) add(y * W + x, from + x);
-        continue;
-      }
-      for (let x = x0, p = y * W + x0, q = from + x0; x < x1; ++x, ++p, ++q) {  // no edit: the plain sum
+    const dx = Math.round((u - uc) * disparity), dy = Math.round((v - vc) * disparity);
+    const x0 = evenIfCoarse(Math.max(0, dx)), x1 = Math.min(W, W + dx);
+    for (let y = evenIfCoarse(Math.max(0, dy)); y < Math.min(H, H + dy); y += step) {
+      for (let p = y * W + x0, q = base + (y - dy) * W + x0 - dx, end = y * W + x1; p < end; p += step, q += step) {
+        if (edit && selected[labels[q]] === 1) { add(p, q); continue; }
         sum[3 * p] += views[3 * q]; sum[3 * p + 1] += views[3 * q + 1]; sum[3 * p + 2] += views[3 * q + 2];
         count[p] += 1;
       }
     }
   }
   const rgb = new Uint8ClampedArray(N * 3);
-  for (let p = 0; p < N; ++p) {
-    const c = count[p] || 1;
-    rgb[3 * p] = sum[3 * p] / c; rgb[3 * p + 1] = sum[3 * p + 1] / c; rgb[3 * p + 2] = sum[3 * p + 2] / c;
+  for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
+    const p = y * W + x, s = step === 1 ? p : (y - (y % step)) * W + (x - (x % step));  // coarse: 2x2 blocks
+    const c = count[s] || 1;
+    rgb[3 * p] = sum[3 * s] / c; rgb[3 * p + 1] = sum[3 * s + 1] / c; rgb[3 * p + 2] = sum[3 * s + 2] / c;
   }
   state.refocusCache = { key, rgb };
   return rgb;
