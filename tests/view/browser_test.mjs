@@ -21,7 +21,8 @@ fs.mkdirSync(work, { recursive: true });
 const browser = await puppeteer.launch({
   executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--window-size=1400,900'],
+  // Root in a container: no sandbox; a small /dev/shm: use /tmp.
+  args: ['--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--window-size=1400,900'],
   defaultViewport: { width: 1400, height: 900 },
 });
 
