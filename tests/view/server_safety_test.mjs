@@ -1,13 +1,17 @@
 // `lfsp view`'s server: loopback only by default, nothing but its own routes (no path reaches another file),
 // survives malformed requests and a client that goes away mid-download, and fails like every command on a port in
 // use or a bad input (one line naming it, exit 2).
+// Also: an export with fractional numbers gives a command line that writes the same bytes.
 //   node server_safety_test.mjs LFSP SAMPLE_LIGHT_FIELD
 
 import fs from 'node:fs';
 import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
 import { check, runLfsp, startViewer, stopViewer } from './viewer_process.mjs';
 
 const [lfsp, sample] = process.argv.slice(2);
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'lfsp-view-safety-'));
 
 // Sends raw bytes (no client-side path normalisation) and resolves with what came back before the server closed
 // the connection (or after `waitMs`).
@@ -42,7 +46,7 @@ function listeningAddresses(port) {
     .map((fields) => fields[1].split(':')[0]);
 }
 
-const viewer = await startViewer(lfsp, [sample]);
+const viewer = await startViewer(lfsp, [sample, '--out', path.join(work, 'export')]);
 try {
   check(viewer.host === '127.0.0.1', 'announces the loopback address');
   check(JSON.stringify(listeningAddresses(viewer.port)) === '["0100007F"]', 'listens on 127.0.0.1 only');
@@ -76,6 +80,19 @@ try {
   const badExport = await fetch(`${viewer.url}api/export`, { method: 'POST', body: '{"label_ids": [999999999]}' });
   check(badExport.status === 400 && (await badExport.json()).error.length > 0, 'answers a bad export with 400 and why');
 
+  // An export with fractional numbers, HSV and a feather: the printed command line writes the same bytes (the
+  // numbers survive the round trip through text exactly).
+  const edit = { label_ids: [0, 2], hue: -37.5, saturation: 0.85, value: 1.1, space: 'hsv', feather: 1.5 };
+  const exported = await fetch(`${viewer.url}api/export`, { method: 'POST', body: JSON.stringify(edit) });
+  const answer = await exported.json();
+  check(exported.status === 200 && answer.arguments.includes('--saturation') &&
+        answer.arguments[answer.arguments.indexOf('--saturation') + 1] === '0.85', `exports ${answer.command}`);
+  const again = [...answer.arguments];
+  again[again.indexOf('--out') + 1] = path.join(work, 'by_command.h5');
+  const rerun = await runLfsp(lfsp, ['-q', ...again]);
+  check(rerun.code === 0 && fs.readFileSync(answer.files[0]).equals(fs.readFileSync(path.join(work, 'by_command.h5'))),
+        'the exported command line writes the same bytes as the export');
+
   // A browser closed while the views download.
   await new Promise((resolve) => {
     const socket = net.connect(viewer.port, '127.0.0.1', () => socket.write('GET /api/views HTTP/1.1\r\nHost: x\r\n\r\n'));
@@ -100,4 +117,5 @@ check(missing.code === 2 && missingLines.length === 1 && missingLines[0].include
 const notLightField = await runLfsp(lfsp, ['view', '/etc/passwd']);
 check(notLightField.code === 2 && notLightField.stderr.trim().split('\n').length === 1 &&
       notLightField.stderr.includes('/etc/passwd'), `a file that is no light field: exit 2 (${notLightField.stderr.trim()})`);
+fs.rmSync(work, { recursive: true, force: true });
 console.log('server safety: all checks passed');
