@@ -189,6 +189,25 @@ async function sampleTest() {
     check(viewerBytes.equals(commandBytes), `exported recolored.h5 and lfsp recolor's output are byte-identical (${viewerBytes.length} bytes)`);
     check(fs.existsSync(path.join(exportDir, 'selection.json')) && fs.existsSync(path.join(exportDir, 'selection_mask.png')),
           'the selection is exported as a label list and a mask');
+    // Undo and redo step the hue back and forth (one history entry per key press).
+    await page.click('#undo');
+    check(Number(await page.$eval('#hue', (slider) => slider.value)) === 89, 'undo returns the hue to 89');
+    await page.click('#redo');
+    check(Number(await page.$eval('#hue', (slider) => slider.value)) === 90, 'redo sets it to 90 again');
+    // Painting from the selected superpixel across the centre view reaches others.
+    await page.click('input[name=tool][value=paint]');
+    const from = await viewPixelOnScreen(page, meta, target.x, target.y);
+    const to = await viewPixelOnScreen(page, meta, meta.width - 1 - target.x, meta.height - 1 - target.y);
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 20; ++i) await page.mouse.move(from.x + ((to.x - from.x) * i) / 20, from.y + ((to.y - from.y) * i) / 20);
+    await page.mouse.up();
+    const painted = await page.$eval('#selection-count', (e) => parseInt(e.textContent, 10));
+    check(painted > 1, `painting across the view selected ${painted} superpixels`);
+    await page.click('input[name=tool][value=click]');
+    await page.click('#undo');
+    check(await page.$eval('#selection-count', (e) => e.textContent.startsWith('1 ')), 'undo takes the painting back');
+
     if (screenshots) {
       await page.click('#boundaries');
       await page.click('#highlight');
