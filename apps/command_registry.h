@@ -10,7 +10,7 @@ namespace lfsp::cli {
 // Each subcommand lives in apps/commands/<name>_command.cc and registers itself with LFSP_REGISTER_COMMAND, so
 // adding a command touches no shared file. `order` fixes its place in `lfsp --help` (docs/DESIGN.md order:
 // info 10, simulate 20, whites 30, decode 40, calibrate 50, rectify 60, depth 70, segment 80, evaluate 90,
-// noise-study 100, refocus 110, recolor 120, pipeline 130).
+// noise-study 100, refocus 110, recolor 120, pipeline 130, view 140).
 struct CommandEntry {
   int order;
   std::string name;

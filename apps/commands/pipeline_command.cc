@@ -9,6 +9,7 @@
 #include "../pipeline/pipeline.h"
 #include "command_registry.h"
 #include "raw_input_options.h"
+#include "shell_quoting.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -62,6 +63,8 @@ void AddPipelineCommand(CLI::App& app) {
     options->out = *out;
     const pipeline::PipelineResult result = pipeline::RunPipeline(*options);
     std::printf("report: %s\n", result.report.string().c_str());
+    // The interactive counterpart of the report: every view, selection and editing in the browser.
+    std::printf("view:   %s\n", ShellQuoted({"lfsp", "view", options->out.string()}).c_str());
   });
 }
 

@@ -10,15 +10,11 @@
 
 #include "arguments/recolor_arguments.h"
 #include "command_registry.h"
-#include "input_loading.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/image_io.h"
-#include "lfsp/core/load.h"
 #include "lfsp/core/stopwatch.h"
-#include "lfsp/edit/colour_adjust.h"
-#include "lfsp/edit/recolor.h"
 #include "lfsp/edit/selection.h"
+#include "recolor_request.h"
 #include "stages/recolor_stage.h"
 #include "view_selection.h"
 
@@ -27,16 +23,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RecolorCommandOptions {
-  int views = 0;
-  std::string input;
-  std::string labels;
-  std::vector<std::int32_t> label_ids;
+// The request by label ids, with the command's other ways to choose.
+struct RecolorCommandOptions : RecolorRequest {
   std::vector<std::string> at;
   std::string mask;
-  int bit_depth = 8;
-  std::string out;
-  RecolorArguments colour_edit;
 };
 
 std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, const Labels& labels,
@@ -57,29 +47,10 @@ std::vector<std::int32_t> ChooseSelection(const RecolorCommandOptions& options, 
   return edit::SelectByMask(labels, ReadImage(options.mask).pixels, 0.5);
 }
 
-// The light field with the labels to recolour by: the --labels file's, else its own.
-Bundle LoadLabelledInput(const RecolorCommandOptions& options, nlohmann::ordered_json& summary) {
-  Bundle bundle = LoadInput(options.input);
-  if (!options.labels.empty()) {
-    bundle.labels = ReadLabels(options.labels);
-  } else if (!bundle.labels) {
-    throw Error(options.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
-  }
-  // Labels made on the well-lit central views (as `lfsp segment` chooses them) select the same views here.
-  const int label_views = bundle.labels->shape().nu;
-  const int requested =
-      options.views > 0 ? options.views : (label_views < bundle.light_field.shape().nu ? label_views : 0);
-  summary["views"] = SelectViews(bundle, requested, options.input);
-  summary["labels"] = options.labels.empty() ? options.input : options.labels;
-  RequireLabelsMatch(*bundle.labels, bundle.light_field.shape(), summary["labels"].get<std::string>());
-  return bundle;
-}
-
 void RunRecolor(const RecolorCommandOptions& options) {
   const Stopwatch stopwatch;
   stages::RecolorStageOptions stage;
-  if (options.bit_depth != 8 && options.bit_depth != 16) throw Error("--bit-depth: expected 8 or 16");
-  stage.recolor = ToRecolorOptions(options.colour_edit);
+  stage.recolor = RecolorOptionsOf(options);
   stage.bit_depth = options.bit_depth;
   std::error_code ec;
   if (fs::exists(options.out, ec) && fs::equivalent(options.input, options.out, ec))
