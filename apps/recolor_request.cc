@@ -56,10 +56,9 @@ std::vector<std::string> RecolorCommandLine(const RecolorRequest& request) {
   if (!request.labels.empty()) arguments.insert(arguments.end(), {"--labels", request.labels});
   if (request.views > 0) arguments.insert(arguments.end(), {"--views", std::to_string(request.views)});
   const RecolorArguments& edit = request.colour_edit;
-  arguments.insert(arguments.end(),
-                   {"--label-ids", JoinedIds(request.label_ids), "--hue", ExactNumber(edit.hue), "--saturation",
-                    ExactNumber(edit.saturation), "--value", ExactNumber(edit.value), "--space", edit.space,
-                    "--feather", ExactNumber(edit.feather)});
+  arguments.insert(arguments.end(), {"--label-ids", JoinedIds(request.label_ids), "--hue", ExactNumber(edit.hue),
+                                     "--saturation", ExactNumber(edit.saturation), "--value", ExactNumber(edit.value),
+                                     "--space", edit.space, "--feather", ExactNumber(edit.feather)});
   if (edit.no_weights) arguments.push_back("--no-weights");
   if (request.bit_depth != 8) arguments.insert(arguments.end(), {"--bit-depth", std::to_string(request.bit_depth)});
   arguments.insert(arguments.end(), {"--out", request.out});
