@@ -138,11 +138,12 @@ copies: writing to them changes the light field, and they keep it alive.)doc")
                              })
       .def(
           "__array__",
-          [](py::object self, py::object dtype) {
+          [](py::object self, py::object dtype, py::object copy) {
             py::object samples = SamplesOf(self);
-            return dtype.is_none() ? samples : samples.attr("astype")(dtype);
+            if (!dtype.is_none()) return samples.attr("astype")(dtype);  // a converted copy, as numpy asks
+            return copy.is_none() || !copy.cast<bool>() ? samples : samples.attr("copy")();
           },
-          py::arg("dtype") = py::none())
+          py::arg("dtype") = py::none(), py::arg("copy") = py::none())
       .def("__repr__", [](const Bundle& b) {
         std::string text =
             "<lfsp.LightField " + ToString(b.light_field.shape()) + ", " + ToString(b.light_field.transfer);
