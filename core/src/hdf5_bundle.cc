@@ -12,6 +12,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
 
 namespace lfsp {
@@ -222,6 +223,7 @@ Bundle ReadBundle(const fs::path& path) {
   const std::string name = path.string();
   RequireHdf5File(path);
   try {
+    const ForeignCrashGuard guard(name, "libhdf5");
     const H5::H5File file(name, H5F_ACC_RDONLY);
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
     Bundle bundle;
@@ -271,6 +273,7 @@ Labels ReadLabels(const fs::path& path) {
   const std::string name = path.string();
   RequireHdf5File(path);
   try {
+    const ForeignCrashGuard guard(name, "libhdf5");
     const H5::H5File file(name, H5F_ACC_RDONLY);
     const char* dataset_name = file.nameExists("labels")      ? "labels"
                                : file.nameExists("GT_LABELS") ? "GT_LABELS"

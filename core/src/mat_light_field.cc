@@ -14,6 +14,7 @@
 #include "hdf5_limits.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
 
 namespace lfsp {
@@ -75,6 +76,7 @@ LightField ReadV73(const fs::path& path) {
   const std::string name = path.string();
   H5::Exception::dontPrint();
   try {
+    const ForeignCrashGuard guard(name, "libhdf5");
     const H5::H5File file(name, H5F_ACC_RDONLY);
     if (!file.nameExists(kVariable)) ThrowFileError(name, "MATLAB v7.3 file without a variable 'LF'");
     const H5::DataSet dataset = file.openDataSet(kVariable);
@@ -158,6 +160,7 @@ LightField ReadV5(const fs::path& path) {
   const std::string name = path.string();
   CheckMat5Complete(path);
   SilenceMatio();
+  const ForeignCrashGuard guard(name, "libmatio");
   std::unique_ptr<mat_t, MatCloser> mat(Mat_Open(name.c_str(), MAT_ACC_RDONLY));
   if (!mat) ThrowFileError(name, "not a MATLAB .mat file (or an unreadable one)");
   std::unique_ptr<matvar_t, VarFreer> info(Mat_VarReadInfo(mat.get(), kVariable));

@@ -304,5 +304,19 @@ TEST(HostileInput, HdfNumbersOfAbsurdSizeAreRefusedBeforeReading) {
   }
 }
 
+// Found by make fuzz: this 1.6 KB file makes libhdf5 1.10 read through a null pointer (SIGSEGV) while it looks up
+// a name. lfsp cannot fix the library; ForeignCrashGuard turns the crash into the bad-input contract.
+TEST(HostileInput, FileThatCrashesLibhdf5GivesOneLineAndStatus2) {
+  const TempDir temp;
+  // Kept out of the fuzz seeds: replaying it would stop the fuzzer on a crash that is the library's.
+  const fs::path source = testing::SourceDir() / "tests" / "e2e" / "data" / "libhdf5_null_read_v73.mat";
+  for (const char* name : {"lf.mat", "lf.h5"}) {
+    fs::copy_file(source, temp / name);
+    ExpectRefused(RunLfsp({"info", (temp / name).string()}), "malformed file (libhdf5 crashed reading it)");
+    ExpectRefused(RunLfsp({"depth", (temp / name).string(), "--out", (temp / "d.pfm").string()}), name);
+    EXPECT_FALSE(fs::exists(temp / "d.pfm"));
+  }
+}
+
 }  // namespace
 }  // namespace lfsp
