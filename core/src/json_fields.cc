@@ -1,6 +1,8 @@
 #include "lfsp/core/json_fields.h"
 
 #include <charconv>
+#include <cmath>
+#include <limits>
 
 #include "lfsp/core/error.h"
 
@@ -68,6 +70,16 @@ std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path
   return value->get<double>();
 }
 
+std::optional<int> IntAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
+  const std::optional<double> value = NumberAt(root, path, source);
+  if (!value) return std::nullopt;
+  // Converting a double outside int's range is undefined behaviour (make fuzz found 7.9e15 in a whites.json).
+  if (!(std::isfinite(*value) && *value == std::floor(*value) && *value >= std::numeric_limits<int>::min() &&
+        *value <= std::numeric_limits<int>::max()))
+    source.WrongType(path, "a whole number");
+  return static_cast<int>(*value);
+}
+
 std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
   const nlohmann::json* value = FindPath(root, path);
   if (value == nullptr || value->is_null()) return std::nullopt;
@@ -86,6 +98,12 @@ std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, co
 double RequireNumber(const nlohmann::json& root, std::string_view path, const JsonSource& source,
                      std::string_view prefix) {
   const std::optional<double> value = NumberAt(root, path, source);
+  if (!value) source.Missing(std::string(prefix) + std::string(path));
+  return *value;
+}
+
+int RequireInt(const nlohmann::json& root, std::string_view path, const JsonSource& source, std::string_view prefix) {
+  const std::optional<int> value = IntAt(root, path, source);
   if (!value) source.Missing(std::string(prefix) + std::string(path));
   return *value;
 }

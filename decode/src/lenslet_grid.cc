@@ -21,6 +21,14 @@ double RequireNumber(const nlohmann::json& json, const char* key, const std::str
   return json[key].get<double>();
 }
 
+// A count or size: a whole number an int holds (converting anything else to int is undefined behaviour).
+int RequireCount(const nlohmann::json& json, const char* key, const std::string& source) {
+  const double value = RequireNumber(json, key, source);
+  if (!(value == std::floor(value) && std::abs(value) <= std::numeric_limits<int>::max()))
+    throw Error(source + ": lenslet grid field '" + key + "' is not a whole number an int holds");
+  return static_cast<int>(value);
+}
+
 }  // namespace
 
 cv::Mat LensLabels(const LensletGrid& grid) {
@@ -81,11 +89,11 @@ LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string&
   grid.rotation = RequireNumber(json, "rotation", source);
   grid.origin_x = RequireNumber(json, "origin_x", source);
   grid.origin_y = RequireNumber(json, "origin_y", source);
-  grid.row_shift = static_cast<int>(RequireNumber(json, "row_shift", source));
-  grid.columns = static_cast<int>(RequireNumber(json, "columns", source));
-  grid.rows = static_cast<int>(RequireNumber(json, "rows", source));
-  grid.sensor_width = static_cast<int>(RequireNumber(json, "sensor_width", source));
-  grid.sensor_height = static_cast<int>(RequireNumber(json, "sensor_height", source));
+  grid.row_shift = RequireCount(json, "row_shift", source);
+  grid.columns = RequireCount(json, "columns", source);
+  grid.rows = RequireCount(json, "rows", source);
+  grid.sensor_width = RequireCount(json, "sensor_width", source);
+  grid.sensor_height = RequireCount(json, "sensor_height", source);
   grid.rms_residual = json.value("rms_residual", 0.0);
   grid.lenses_measured = json.value("lenses_measured", 0);
   grid.lenses_used = json.value("lenses_used", 0);

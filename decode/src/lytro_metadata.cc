@@ -81,7 +81,7 @@ RawFormat ReadRawFormat(const nlohmann::json& m, const std::string& source) {
   }
   f.width = static_cast<int>(width);
   f.height = static_cast<int>(height);
-  const int bits = static_cast<int>(RequireNumber(m, base + ".pixelPacking.bitsPerPixel", source));
+  const int bits = RequireInt(m, base + ".pixelPacking.bitsPerPixel", source);
   const std::string endianness = RequireString(m, base + ".pixelPacking.endianness", source);
   f.packing = PackingFrom(bits, endianness, source, base + ".pixelPacking");
   f.black = ReadBayerValues(m, base + ".pixelFormat.black", source, "");
@@ -89,7 +89,7 @@ RawFormat ReadRawFormat(const nlohmann::json& m, const std::string& source) {
   if (!(f.white.gr > f.black.gr && f.white.r > f.black.r && f.white.b > f.black.b && f.white.gb > f.black.gb)) {
     throw Error(source + ": " + base + ".pixelFormat white level is not above the black level");
   }
-  f.right_shift = static_cast<int>(NumberAt(m, base + ".pixelFormat.rightShift", source).value_or(0.0));
+  f.right_shift = IntAt(m, base + ".pixelFormat.rightShift", source).value_or(0);
   f.mosaic = MosaicFrom(RequireString(m, base + ".mosaic.tile", source),
                         RequireString(m, base + ".mosaic.upperLeftPixel", source), source);
   return f;

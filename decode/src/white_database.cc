@@ -276,12 +276,12 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
     e.metadata_member = StringAt(j, "metadata_member", where).value_or("");
     e.serial = RequireString(j, "serial", where);
     e.camera_model = StringAt(j, "camera_model", where).value_or("");
-    e.zoom_step = static_cast<int>(RequireNumber(j, "zoom_step", where));
-    e.focus_step = static_cast<int>(RequireNumber(j, "focus_step", where));
+    e.zoom_step = RequireInt(j, "zoom_step", where);
+    e.focus_step = RequireInt(j, "focus_step", where);
     e.exposure_duration = RequireNumber(j, "exposure_s", where);
-    e.width = static_cast<int>(RequireNumber(j, "width", where));
-    e.height = static_cast<int>(RequireNumber(j, "height", where));
-    const int bits = static_cast<int>(RequireNumber(j, "bits_per_pixel", where));
+    e.width = RequireInt(j, "width", where);
+    e.height = RequireInt(j, "height", where);
+    const int bits = RequireInt(j, "bits_per_pixel", where);
     if (bits == 10) {
       e.packing = RawPacking::kBits10Illum;
     } else if (bits == 12) {

@@ -185,6 +185,15 @@ TEST_F(WhiteDatabaseTest, BadCacheFiles) {
   WriteBytes(cache, R"({"lfsp_white_image_database": 1, "entries": [{"name": "MOD_0000"}]})");
   EXPECT_NE(ErrorOf([&] { ReadWhiteImageDatabase(cache); }).find("bad.json entry 0: metadata field raw is missing"),
             std::string::npos);
+  // Found by make fuzz: a size beyond int's range was converted to int (undefined behaviour).
+  for (const char* height : {"7909551257841861", "1.5", "-1e300"}) {
+    WriteBytes(cache, std::string(R"({"lfsp_white_image_database": 1, "entries": [{"name": "M", "raw": "M.RAW",
+        "metadata": "M.TXT", "serial": "s", "zoom_step": 1, "focus_step": 2, "exposure_s": 0.1, "width": 8,
+        "height": )") + height +
+                          R"(, "bits_per_pixel": 10}]})");
+    EXPECT_NE(ErrorOf([&] { ReadWhiteImageDatabase(cache); }).find("height is not a whole number"), std::string::npos)
+        << height;
+  }
   TempDir empty;
   EXPECT_NE(ErrorOf([&] { BuildWhiteImageDatabase(empty.path()); }).find("no white image found"), std::string::npos);
   EXPECT_NE(ErrorOf([&] { BuildWhiteImageDatabase(empty / "missing"); }).find("not a folder"), std::string::npos);

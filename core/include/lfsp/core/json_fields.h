@@ -35,6 +35,8 @@ const nlohmann::json* FindPath(const nlohmann::json& root, std::string_view path
 // with another type -> lfsp::Error from `source`.
 std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
 std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
+// A whole number that an int holds (a count, a step, a size); anything else present -> lfsp::Error "a whole number".
+std::optional<int> IntAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
 // Accepts the strings "true" and "false" too: some Lytro files write flags so.
 std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
 
@@ -42,6 +44,8 @@ std::optional<bool> BoolAt(const nlohmann::json& root, std::string_view path, co
 // looks inside a sub-object passes the sub-object's path as prefix).
 double RequireNumber(const nlohmann::json& root, std::string_view path, const JsonSource& source,
                      std::string_view prefix = "");
+int RequireInt(const nlohmann::json& root, std::string_view path, const JsonSource& source,
+               std::string_view prefix = "");
 std::string RequireString(const nlohmann::json& root, std::string_view path, const JsonSource& source,
                           std::string_view prefix = "");
 
