@@ -5,6 +5,7 @@
 
 #include "input_loading.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/view_crop.h"
 #include "view_selection.h"
 
 namespace lfsp::cli {
@@ -37,9 +38,7 @@ void AttachLabels(Bundle& bundle, const RecolorRequest& request, nlohmann::order
     throw Error(request.input + ": holds no labels; give --labels LABELS.h5 (as `lfsp segment` writes it)");
   }
   // Labels made on the well-lit central views (as `lfsp segment` chooses them) select the same views here.
-  const int label_views = bundle.labels->shape().nu;
-  const int requested =
-      request.views > 0 ? request.views : (label_views < bundle.light_field.shape().nu ? label_views : 0);
+  const int requested = ViewsForLabels(request.views, bundle.light_field.shape(), bundle.labels->shape());
   summary["views"] = SelectViews(bundle, requested, request.input);
   summary["labels"] = request.labels.empty() ? request.input : request.labels;
   RequireLabelsMatch(*bundle.labels, bundle.light_field.shape(), summary["labels"].get<std::string>());

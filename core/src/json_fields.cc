@@ -70,14 +70,19 @@ std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path
   return value->get<double>();
 }
 
+std::optional<int> WholeInt(double value) {
+  if (!(std::isfinite(value) && value == std::floor(value) && value >= std::numeric_limits<int>::min() &&
+        value <= std::numeric_limits<int>::max()))
+    return std::nullopt;
+  return static_cast<int>(value);
+}
+
 std::optional<int> IntAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {
   const std::optional<double> value = NumberAt(root, path, source);
   if (!value) return std::nullopt;
-  // Converting a double outside int's range is undefined behaviour (make fuzz found 7.9e15 in a whites.json).
-  if (!(std::isfinite(*value) && *value == std::floor(*value) && *value >= std::numeric_limits<int>::min() &&
-        *value <= std::numeric_limits<int>::max()))
-    source.WrongType(path, "a whole number");
-  return static_cast<int>(*value);
+  const std::optional<int> whole = WholeInt(*value);  // make fuzz found 7.9e15 in a whites.json
+  if (!whole) source.WrongType(path, "a whole number");
+  return whole;
 }
 
 std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const JsonSource& source) {

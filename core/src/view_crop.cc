@@ -103,6 +103,11 @@ ViewChoice ChooseViews(const LightField& light_field, int requested) {
   return choice;
 }
 
+int ViewsForLabels(int requested, const LightFieldShape& light_field, const LightFieldShape& labels) {
+  if (requested > 0) return requested;
+  return labels.nu < light_field.nu ? labels.nu : 0;
+}
+
 void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, int n) {
   if (n != light_field.shape().nu || n != light_field.shape().nv) light_field = CentralViews(light_field, n);
   if (labels && (n != labels->shape().nu || n != labels->shape().nv)) labels = CentralViews(*labels, n);

@@ -7,9 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "bayer_levels.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/json_fields.h"
 #include "lfsp/core/ordered_reduction.h"
 
 namespace lfsp::decode {
@@ -21,12 +23,11 @@ double RequireNumber(const nlohmann::json& json, const char* key, const std::str
   return json[key].get<double>();
 }
 
-// A count or size: a whole number an int holds (converting anything else to int is undefined behaviour).
+// A count or size: a whole number an int holds.
 int RequireCount(const nlohmann::json& json, const char* key, const std::string& source) {
-  const double value = RequireNumber(json, key, source);
-  if (!(value == std::floor(value) && std::abs(value) <= std::numeric_limits<int>::max()))
-    throw Error(source + ": lenslet grid field '" + key + "' is not a whole number an int holds");
-  return static_cast<int>(value);
+  const std::optional<int> value = WholeInt(RequireNumber(json, key, source));
+  if (!value) throw Error(source + ": lenslet grid field '" + key + "' is not a whole number an int holds");
+  return *value;
 }
 
 }  // namespace

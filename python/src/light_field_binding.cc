@@ -87,12 +87,22 @@ std::shared_ptr<Bundle> MakeBundle(py::object samples, py::object weights, const
 
 py::object ToPython(Bundle bundle) { return py::cast(std::make_shared<Bundle>(std::move(bundle))); }
 
+Bundle CentralViewsOf(const Bundle& bundle, int n) {
+  Bundle central;
+  const LightFieldShape& shape = bundle.light_field.shape();
+  central.light_field = n == shape.nu && n == shape.nv ? bundle.light_field : CentralViews(bundle.light_field, n);
+  central.disparity = bundle.disparity;  // of the centre view, which stays the centre
+  if (bundle.labels)
+    central.labels = bundle.labels->shape().nu == n && bundle.labels->shape().nv == n ? *bundle.labels
+                                                                                      : CentralViews(*bundle.labels, n);
+  return central;
+}
+
 const Bundle& ChosenViews(const Bundle& bundle, int views, Bundle& storage) {
   const ViewChoice choice = ChooseViews(bundle.light_field, views);
   const LightFieldShape& shape = bundle.light_field.shape();
   if (choice.n == shape.nu && choice.n == shape.nv) return bundle;
-  storage = bundle;
-  KeepCentralViews(storage.light_field, storage.labels, choice.n);
+  storage = CentralViewsOf(bundle, choice.n);
   return storage;
 }
 

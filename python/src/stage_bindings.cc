@@ -258,7 +258,7 @@ void BindEvaluate(py::module_& m) {
         const Labels labels = LabelsFromArray(labels_array, "labels");
         const Bundle* lf = light_field.is_none() ? nullptr : &light_field.cast<const Bundle&>();
         Bundle central_views;  // labels made on the well-lit central views (as segment chooses them) score those
-        if (lf != nullptr && labels.shape().nu < lf->light_field.shape().nu)
+        if (lf != nullptr && ViewsForLabels(0, lf->light_field.shape(), labels.shape()) > 0)
           lf = &ChosenViews(*lf, labels.shape().nu, central_views);
         if (lf != nullptr) RequireLabelsMatch(labels, lf->light_field.shape(), "labels");
         std::optional<DisparityMap> segmentation_disparity, truth_disparity;
@@ -350,13 +350,16 @@ void BindEdits(py::module_& m) {
         cli::RecolorArguments arguments;
         ParseKeywords("recolor", keywords, recolor_options(views, arguments));
         const edit::RecolorOptions options = cli::ToRecolorOptions(arguments);
-        Bundle edited = light_field;  // the input is never modified
-        if (!labels.is_none()) edited.labels = LabelsFromArray(labels, "labels");
-        if (!edited.labels) throw Error("recolor: the light field carries no labels; pass labels=");
-        // Labels made on the well-lit central views (as segment chooses them) select the same views here.
-        const int label_views = edited.labels->shape().nu;
-        const int requested = views > 0 ? views : (label_views < edited.light_field.shape().nu ? label_views : 0);
-        KeepCentralViews(edited.light_field, edited.labels, ChooseViews(edited.light_field, requested).n);
+        std::optional<Labels> given;
+        if (!labels.is_none()) given = LabelsFromArray(labels, "labels");
+        const std::optional<Labels>& chosen_labels = given ? given : light_field.labels;
+        if (!chosen_labels) throw Error("recolor: the light field carries no labels; pass labels=");
+        // Labels made on the well-lit central views (as segment chooses them) select the same views here; the input
+        // is never modified, and only the views kept are copied.
+        const int requested = ViewsForLabels(views, light_field.light_field.shape(), chosen_labels->shape());
+        const int n = ChooseViews(light_field.light_field, requested).n;
+        Bundle edited = CentralViewsOf(light_field, n);
+        if (given) edited.labels = given->shape().nu == n && given->shape().nv == n ? *given : CentralViews(*given, n);
         RequireLabelsMatch(*edited.labels, edited.light_field.shape(), "labels");
         const std::vector<std::int32_t> selection = Selection(*edited.labels, label_ids, at, mask);
         RunLongWork([&] { edit::Recolor(edited.light_field, *edited.labels, selection, options); });

@@ -35,6 +35,10 @@ const nlohmann::json* FindPath(const nlohmann::json& root, std::string_view path
 // with another type -> lfsp::Error from `source`.
 std::optional<double> NumberAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
 std::optional<std::string> StringAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
+// `value` as an int when it is a whole number an int holds, else nullopt (converting any other double to int is
+// undefined behaviour).
+std::optional<int> WholeInt(double value);
+
 // A whole number that an int holds (a count, a step, a size); anything else present -> lfsp::Error "a whole number".
 std::optional<int> IntAt(const nlohmann::json& root, std::string_view path, const JsonSource& source);
 // Accepts the strings "true" and "false" too: some Lytro files write flags so.

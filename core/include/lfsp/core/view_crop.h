@@ -34,6 +34,11 @@ struct ViewChoice {
 };
 ViewChoice ChooseViews(const LightField& light_field, int requested = 0);
 
+// The views to request (for ChooseViews) when working with labels made on the well-lit central views (as segment
+// chooses them): `requested` when > 0, else the labels' view count when they have fewer views than the light field,
+// else 0 (ChooseViews decides). Used by recolor, the viewer's export and Python.
+int ViewsForLabels(int requested, const LightFieldShape& light_field, const LightFieldShape& labels);
+
 // Keeps the central n x n views of a light field and of its labels in place (nothing is copied when n is already
 // the view count).
 void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, int n);
