@@ -12,6 +12,7 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
                     "Estimate the white image (micro-image vignetting) and the lenslet grid from the capture itself "
                     "instead of looking one up (automatic, with a warning, when no white image matches; always for "
                     "plain raw images)");
+  AddGridFileOption(command, arguments.grid);
   AddPlainRawOptions(command, arguments.plain);
   command->add_option("--demosaic", arguments.demosaic, "gradient | edge-aware | bilinear (default: gradient)");
   command->add_option("--colour", arguments.colour,
@@ -22,10 +23,20 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
                       "Row-alternation softening against hexagonal artefacts, 0..0.25 (default: 0.1)");
 }
 
+void AddGridFileOption(CLI::App* command, std::string& grid_file) {
+  command
+      ->add_option("--grid", grid_file,
+                   "Use this lenslet grid instead of fitting one: lfsp's grid.json (lfsp grid --out) or LFToolbox's "
+                   "LensletGridModel (a CalInfo.json or a white image's .grid.json) (default: fitted on the white "
+                   "image, or found in the capture)")
+      ->check(CLI::ExistingFile);
+}
+
 decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& arguments) {
   decode::CaptureDecodeOptions options;
   options.white_images = arguments.white_images;
   options.no_white_image = arguments.no_white_image;
+  options.grid = arguments.grid;
   options.plain = ToPlainRawOptions(arguments.plain);
   options.decode.demosaic = decode::DemosaicMethodFromString(arguments.demosaic);
   options.decode.colour = decode::ColourModeFromString(arguments.colour);
@@ -36,7 +47,8 @@ decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& argum
 }
 
 nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
-  return {{"demosaic", arguments.demosaic},
+  return {{"grid", arguments.grid.empty() ? nlohmann::json(nullptr) : nlohmann::json(arguments.grid)},
+          {"demosaic", arguments.demosaic},
           {"colour", arguments.colour},
           {"hot_pixels", !arguments.no_hot_pixels},
           {"dehex", arguments.dehex}};

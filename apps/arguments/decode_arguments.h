@@ -14,6 +14,7 @@ namespace lfsp::cli {
 struct DecodeArguments {
   std::string white_images;
   bool no_white_image = false;
+  std::string grid;
   std::string demosaic = "gradient";
   std::string colour = "camera";
   bool no_hot_pixels = false;
@@ -22,6 +23,9 @@ struct DecodeArguments {
 };
 
 void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments);
+
+// --grid FILE, for every command that decodes raw captures (decode, pipeline).
+void AddGridFileOption(CLI::App* command, std::string& grid_file);
 
 // The decoder's options; lfsp::Error for an unknown demosaic, colour mode, camera or Bayer pattern, or a dehex
 // strength outside [0, 0.25].

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "../pipeline/pipeline.h"
+#include "arguments/decode_arguments.h"
 #include "command_registry.h"
 #include "raw_input_options.h"
 #include "shell_quoting.h"
@@ -33,6 +34,8 @@ void AddPipelineCommand(CLI::App& app) {
   command->add_flag("--no-white-image", options->no_white_image,
                     "Raw captures: estimate the white image and lenslet grid from the capture itself (automatic, with "
                     "a warning, when no white image matches)");
+  auto grid_file = std::make_shared<std::string>();
+  AddGridFileOption(command, *grid_file);
   auto plain = std::make_shared<PlainRawArguments>();
   AddPlainRawOptions(command, *plain);
   auto dmin = std::make_shared<float>(0.0f);
@@ -56,8 +59,9 @@ void AddPipelineCommand(CLI::App& app) {
       ->add_option("--focal-stack", options->focal_stack_slices, "Slices of the focal stack over the disparity range")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
-  command->callback([options, input, out, dmin, dmax, dmin_option, plain] {
+  command->callback([options, input, out, dmin, dmax, dmin_option, plain, grid_file] {
     options->plain = ToPlainRawOptions(*plain);
+    options->grid = *grid_file;
     if (dmin_option->count() > 0) options->depth.range = DisparityRange{*dmin, *dmax};
     options->input = *input;
     options->out = *out;

@@ -149,6 +149,7 @@ Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohm
     decode::CaptureDecodeOptions decode_options;
     decode_options.white_images = options.white_images;
     decode_options.no_white_image = options.no_white_image;
+    decode_options.grid = options.grid;
     decode_options.plain = options.plain;
     stages::DecodeStageResult decoded = stages::RunDecodeStage(input, decode_options);
     bundle = std::move(decoded.bundle);

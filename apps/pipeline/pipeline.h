@@ -19,6 +19,7 @@ struct PipelineOptions {
   std::filesystem::path out;           // output folder (created; replaced only if it holds a previous run)
   std::filesystem::path white_images;  // for raw captures; empty: beside the capture
   bool no_white_image = false;         // estimate the white image and grid from the capture (CaptureDecodeOptions)
+  std::filesystem::path grid;          // a lenslet grid to use instead of fitting one (CaptureDecodeOptions)
   decode::PlainRawOptions plain;       // a plain raw image (PNG/TIFF/JPEG Bayer mosaic) is the input when camera is set
   depth::DepthOptions depth;
   segment::LfspParams segment;

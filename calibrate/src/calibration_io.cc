@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "lfsp/calibrate/lftoolbox_calibration.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 
@@ -93,6 +94,27 @@ json CalibrationToJson(const Calibration& c) {
       {"warnings", c.warnings}};
 }
 
+Matrix5d MatrixFromJson(const json& rows, const std::string& field, const std::string& source) {
+  if (!rows.is_array() || rows.size() != 5)
+    throw Error(source + ": calibration field '" + field + "' must be 5 rows of 5 numbers");
+  Matrix5d H;
+  for (int r = 0; r < 5; ++r) {
+    const json& row = rows[static_cast<std::size_t>(r)];
+    if (!row.is_array() || row.size() != 5)
+      throw Error(source + ": calibration field '" + field + "' must be 5 rows of 5 numbers");
+    for (int col = 0; col < 5; ++col) {
+      const json& v = row[static_cast<std::size_t>(col)];
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        throw Error(source + ": calibration field '" + field + "' holds a non-number at row " + std::to_string(r + 1));
+      H(r, col) = v.get<double>();
+    }
+  }
+  const double determinant = H.determinant();
+  if (!std::isfinite(determinant) || std::abs(determinant) < 1e-40 || !H.inverse().allFinite())
+    throw Error(source + ": calibration matrix '" + field + "' is singular or too extreme to invert");
+  return H;
+}
+
 namespace {
 
 Calibration ParseCalibration(const json& j, const std::string& source) {
@@ -105,21 +127,7 @@ Calibration ParseCalibration(const json& j, const std::string& source) {
   c.shape.width = Integer(lf, "width", source, 1);
   c.shape.height = Integer(lf, "height", source, 1);
   c.shape.channels = 1;
-  const json& h = Field(j, "H", source);
-  if (!h.is_array() || h.size() != 5) throw Error(source + ": calibration field 'H' must be 5 rows of 5 numbers");
-  for (int r = 0; r < 5; ++r) {
-    const json& row = h[static_cast<std::size_t>(r)];
-    if (!row.is_array() || row.size() != 5) throw Error(source + ": calibration field 'H' must be 5 rows of 5 numbers");
-    for (int col = 0; col < 5; ++col) {
-      const json& v = row[static_cast<std::size_t>(col)];
-      if (!v.is_number() || !std::isfinite(v.get<double>()))
-        throw Error(source + ": calibration field 'H' holds a non-number at row " + std::to_string(r + 1));
-      c.model.H(r, col) = v.get<double>();
-    }
-  }
-  const double determinant = c.model.H.determinant();
-  if (!std::isfinite(determinant) || std::abs(determinant) < 1e-40 || !c.model.H.inverse().allFinite())
-    throw Error(source + ": calibration matrix 'H' is singular or too extreme to invert");
+  c.model.H = MatrixFromJson(Field(j, "H", source), "H", source);
   const json& d = Field(j, "distortion", source);
   c.model.distortion = {Number(d, "k1", source), Number(d, "k2", source), Number(d, "k3", source),
                         Number(d, "b1", source), Number(d, "b2", source)};
@@ -140,6 +148,7 @@ Calibration ParseCalibration(const json& j, const std::string& source) {
 
 Calibration CalibrationFromJson(const json& j, const std::string& source) {
   try {
+    if (IsLfToolboxCalibration(j)) return CalibrationFromLfToolbox(j, source);
     return ParseCalibration(j, source);
   } catch (const json::exception& e) {  // a field of the wrong type
     throw Error(source + ": malformed calibration: " + e.what());

@@ -7,6 +7,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
 #include "lfsp/core/stopwatch.h"
+#include "lfsp/decode/given_grid.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/white_database.h"
 
@@ -55,6 +56,21 @@ WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, con
   return white;
 }
 
+// The grid file the user gave, indexed from the optical axis a fitted grid would be indexed from (the white
+// image's or the capture's micro-lens description, else the sensor centre), so both index the same lens alike.
+GridEstimate GivenGrid(const std::filesystem::path& grid_file, const RawInput& input, const WhiteSource* white) {
+  const LytroMetadata& mla_source = white && white->metadata.mla ? white->metadata : input.metadata;
+  double axis_x = 0.5 * (input.raw.width - 1), axis_y = 0.5 * (input.raw.height - 1);
+  if (mla_source.mla) {
+    const GridGuess guess = GuessFromMetadata(mla_source, input.raw.width, input.raw.height);
+    axis_x = guess.axis_x;
+    axis_y = guess.axis_y;
+  }
+  GridEstimate estimate;
+  estimate.grid = ReadGivenGrid(grid_file, input.raw.width, input.raw.height, axis_x, axis_y);
+  return estimate;
+}
+
 }  // namespace
 
 CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path, const CaptureDecodeOptions& options) {
@@ -88,20 +104,25 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   const double white_seconds = step.Lap();
   progress.Tick();
 
-  // The lenslet grid: fitted on the white image (starting from its micro-lens description, or the capture's), or
-  // found in the capture itself.
+  // The lenslet grid: given by the user, fitted on the white image (starting from its micro-lens description, or the
+  // capture's), or found in the capture itself.
   GridEstimate estimate;
   std::optional<PreparedWhite> prepared;
+  if (!options.grid.empty()) estimate = GivenGrid(options.grid, input, white ? &*white : nullptr);
   if (white) {
     // The prepared white image's grey version is what the grid is fitted on.
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
     const LytroMetadata& mla_source = white->metadata.mla ? white->metadata : metadata;
-    estimate = EstimateLensletGrid(prepared->grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
+    if (options.grid.empty())
+      estimate =
+          EstimateLensletGrid(prepared->grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
   } else {
-    try {
-      estimate = FindLensletGridInCapture(input.raw, metadata);
-    } catch (const Error& e) {
-      throw Error(input.path.string() + ": " + e.what());
+    if (options.grid.empty()) {
+      try {
+        estimate = FindLensletGridInCapture(input.raw, metadata);
+      } catch (const Error& e) {
+        throw Error(input.path.string() + ": " + e.what());
+      }
     }
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
@@ -109,9 +130,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   const double grid_seconds = step.Lap();
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
-  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad, fit rms {:.4f} px ({})",
+  const std::string fit = options.grid.empty() ? fmt::format(", fit rms {:.4f} px", estimate.grid.rms_residual) : "";
+  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad{} ({})",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
-               estimate.grid.rotation, estimate.grid.rms_residual, estimate.grid.fit_method);
+               estimate.grid.rotation, fit, estimate.grid.fit_method);
 
   CaptureDecodeResult result;
   DecodeReport report;

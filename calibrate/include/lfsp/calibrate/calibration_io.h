@@ -13,7 +13,8 @@ namespace lfsp::calibrate {
 
 nlohmann::json CalibrationToJson(const Calibration& calibration);
 
-// Throws lfsp::Error naming `source` and the field when the JSON is not a valid calibration.
+// Throws lfsp::Error naming `source` and the field when the JSON is not a valid calibration. LFToolbox's CalInfo.json
+// is accepted too (lftoolbox_calibration.h).
 Calibration CalibrationFromJson(const nlohmann::json& json, const std::string& source);
 
 // Written through a temporary file renamed when complete.
@@ -21,5 +22,7 @@ void WriteCalibration(const Calibration& calibration, const std::filesystem::pat
 Calibration ReadCalibration(const std::filesystem::path& path);
 
 nlohmann::json MatrixToJson(const Matrix5d& H);
+// 5 rows of 5 finite numbers forming an invertible matrix, else lfsp::Error naming `source` and `field`.
+Matrix5d MatrixFromJson(const nlohmann::json& rows, const std::string& field, const std::string& source);
 
 }  // namespace lfsp::calibrate

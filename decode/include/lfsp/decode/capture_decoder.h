@@ -17,6 +17,9 @@ struct CaptureDecodeOptions {
   // capture (EstimateLensletGridFromCapture) instead of looking one up. Also what happens, with a warning, when no
   // white image matches, and always for plain raw images.
   bool no_white_image = false;
+  // A lenslet grid to use instead of fitting one (ReadGivenGrid: lfsp's grid.json or LFToolbox's LensletGridModel,
+  // e.g. a CalInfo.json). The white image is still looked up or estimated, for devignetting.
+  std::filesystem::path grid;
   PlainRawOptions plain;  // how to read a plain raw image (PNG/TIFF/JPEG Bayer mosaic)
   DecodeOptions decode;
 };
