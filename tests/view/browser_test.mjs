@@ -71,18 +71,21 @@ async function canvasPixels(page) {
     Array.from(canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data));
 }
 
-// Presses ArrowRight on a focused slider `steps` times, waiting for the frame each press asks for; returns the
-// slider-to-frame times the page measured.
-async function stepSlider(page, id, steps) {
+// Presses ArrowRight on a focused slider `steps` times, waiting for the frame each press asks for (for the focus
+// slider, the frame with every view, 'focus-full', which follows the first); returns the slider-to-frame times the
+// page measured: the frames of source `id`, or all of them with `allSources`.
+async function stepSlider(page, id, steps, allSources = false) {
   await page.focus(`#${id}`);
   const before = await page.evaluate(() => window.lfspStats.frames.length);
+  const last = id === 'focus' ? 'focus-full' : id;
   for (let i = 0; i < steps; ++i) {
     await page.keyboard.press('ArrowRight');
-    await page.waitForFunction((n) => window.lfspStats.frames.length > n, {}, before + i);
+    await page.waitForFunction((n, source, count) =>
+      window.lfspStats.frames.slice(n).filter((f) => f.source === source).length >= count, {}, before, last, i + 1);
   }
   await nextFrame(page);
-  return page.evaluate((n, source) => window.lfspStats.frames.slice(n).filter((f) => f.source === source),
-                       before, id);
+  return page.evaluate((n, source, all) => window.lfspStats.frames.slice(n).filter((f) => all || f.source === source),
+                       before, id, allSources);
 }
 
 // Drags the slider's thumb with the mouse from its middle, `steps` moves of 8 px, waiting for the frame of each,
@@ -104,6 +107,9 @@ async function dragSlider(page, id, steps) {
   await page.mouse.up();
   await page.waitForFunction((n, source) => window.lfspStats.frames.slice(n).some((f) => f.source === source), {},
                              before, `${id}-release`);
+  if (id === 'focus')  // every view follows in the next frame
+    await page.waitForFunction((n) => window.lfspStats.frames.slice(n).some((f) => f.source === 'focus-full'), {},
+                               before);
   await nextFrame(page);
   return page.evaluate((n) => window.lfspStats.frames.slice(n), before);
 }
@@ -138,6 +144,58 @@ function median(values) {
   return sorted[Math.floor(sorted.length / 2)];
 }
 
+// The refocused picture against shift-and-sum written out here ray by ray: every view (or, while the slider is
+// dragged, every other one in each direction through the centre) moved by its whole-pixel shift
+// round((u - uc) d), round((v - vc) d), each pixel the mean of the rays that reach it.
+function expectedRefocus(meta, views, d, step) {
+  const { nu, nv, width: W, height: H } = meta;
+  const uc = Math.floor(nu / 2), vc = Math.floor(nv / 2), N = W * H;
+  const sum = new Float64Array(3 * N), count = new Uint32Array(N);
+  for (let v = vc % step; v < nv; v += step) for (let u = uc % step; u < nu; u += step) {
+    const dx = Math.round((u - uc) * d), dy = Math.round((v - vc) * d);
+    for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
+      const sx = x - dx, sy = y - dy;
+      if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
+      const q = (v * nu + u) * N + sy * W + sx, p = y * W + x;
+      for (let c = 0; c < 3; ++c) sum[3 * p + c] += views[3 * q + c];
+      count[p] += 1;
+    }
+  }
+  return { sum, count };
+}
+
+async function checkRefocus(page, viewer, meta) {
+  const views = new Uint8Array(await (await fetch(`${viewer.url}api/views`)).arrayBuffer());
+  await page.click('#refocus');
+  // Two settings within the slider's range (the light field's disparity range): dragged, let go, and another.
+  const { min, max } = await page.$eval('#focus', (slider) => ({ min: Number(slider.min), max: Number(slider.max) }));
+  const near = min + 0.8 * (max - min), far = min + 0.25 * (max - min);
+  await nextFrame(page);
+  for (const [wanted, release] of [[near, false], [near, true], [far, true]]) {
+    const before = await page.evaluate(() => window.lfspStats.frames.length);
+    const d = await page.$eval('#focus', (slider, value, released) => {
+      slider.value = String(value);
+      slider.dispatchEvent(new Event('input'));
+      if (released) slider.dispatchEvent(new Event('change'));
+      return Number(slider.value);  // as the slider's step rounds it
+    }, wanted, release);
+    // Letting go draws the preview at once and every view in the next frame ('focus-full').
+    await page.waitForFunction((n, source) => window.lfspStats.frames.slice(n).some((f) => f.source === source), {},
+                               before, release ? 'focus-full' : 'focus');
+    await nextFrame(page);
+    const pixels = await canvasPixels(page);
+    const { sum, count } = expectedRefocus(meta, views, d, release ? 1 : 2);
+    let worst = 0;
+    for (let p = 0; p < meta.width * meta.height; ++p) for (let c = 0; c < 3; ++c)
+      if (count[p] > 0) worst = Math.max(worst, Math.abs(pixels[4 * p + c] - sum[3 * p + c] / count[p]));
+    check(worst <= 1, `refocus at d = ${d} (${release ? 'all views' : 'dragging: 25 views'}) matches shift-and-sum ` +
+                      `to ${worst.toFixed(2)} of 255`);
+  }
+  await page.$eval('#focus', (slider) => { slider.value = '0'; slider.dispatchEvent(new Event('change')); });
+  await page.click('#refocus');
+  await nextFrame(page);
+}
+
 async function sampleTest() {
   const exportDir = path.join(work, 'export');
   const viewer = await startViewer(lfsp, [sample, '--out', exportDir]);
@@ -148,6 +206,7 @@ async function sampleTest() {
     // Plain pixels: no boundaries or outline, so only the edit changes them.
     await page.click('#boundaries');
     await page.click('#highlight');
+    await checkRefocus(page, viewer, meta);
     const target = largestCentreLabel(meta, labels);
     const point = await viewPixelOnScreen(page, meta, target.x, target.y);
     await page.mouse.click(point.x, point.y);
@@ -276,8 +335,14 @@ async function antinousTest() {
       viewSwitch.push(await page.evaluate(() => window.lfspStats.frames.at(-1)));
     }
     // Shift-and-sum (JS on the CPU): dragging sums 25 of the 81 views per frame, letting go all 81.
+    const beforeToggle = await page.evaluate(() => window.lfspStats.frames.length);
     await page.click('#refocus');
+    await page.waitForFunction((n) => window.lfspStats.frames.slice(n).some((f) => f.source === 'focus-full'), {},
+                               beforeToggle);
+    const toggle = await page.evaluate((n) => window.lfspStats.frames.slice(n), beforeToggle);
     const refocus = await dragSlider(page, 'focus', 6);
+    // Keys jump the slider (a change without a drag before it, like a click on its track).
+    const jump = await stepSlider(page, 'focus', 6, true);
     await page.click('#refocus');
     const summary = {
       light_field: `${meta.nu}x${meta.nv}x${meta.width}x${meta.height}`,
@@ -286,8 +351,13 @@ async function antinousTest() {
       hue_slider_to_frame_ms: timings(hue),
       feather_slider_to_frame_ms: timings(feather),
       view_switch_to_frame_ms: timings(viewSwitch),
+      refocus_on_to_frame_ms: timings(toggle.filter((f) => f.source === 'refocus')),
+      refocus_on_to_all_views_ms: timings(toggle.filter((f) => f.source === 'focus-full')),
       refocus_drag_to_frame_ms: timings(refocus.filter((f) => f.source === 'focus')),
       refocus_release_to_frame_ms: timings(refocus.filter((f) => f.source === 'focus-release')),
+      refocus_release_to_all_views_ms: timings(refocus.filter((f) => f.source === 'focus-full')),
+      refocus_jump_to_frame_ms: timings(jump.filter((f) => f.source === 'focus')),
+      refocus_jump_to_all_views_ms: timings(jump.filter((f) => f.source === 'focus-full')),
     };
     console.log(`antinous timings: ${JSON.stringify(summary)}`);
     fs.writeFileSync(path.join(work, 'antinous_timings.json'), `${JSON.stringify(summary, null, 2)}\n`);

@@ -1,7 +1,7 @@
 // The page: loads the light field once, keeps what the user chose (state), and redraws on each change.
 
 import { prepareEdit } from './colour.js';
-import { drawColourBar, drawEpi, drawView, drawViewGrid } from './render.js';
+import { drawColourBar, drawEpi, drawView, drawViewGrid, packedViews } from './render.js';
 
 const $ = (id) => document.getElementById(id);
 const data = {};
@@ -17,7 +17,8 @@ const state = {
   params: { space: 'lch', hue: 0, saturation: 1, value: 1, feather: 0 },
   edit: null,
   editVersion: 0,
-  refocus: { on: false, disparity: 0, allInFocus: false, coarse: false },
+  // coarse: sum every other view (the preview while dragging); fullNext: sum them all in the frame after this one.
+  refocus: { on: false, disparity: 0, allInFocus: false, coarse: false, fullNext: false },
   zoom: 1, panX: 0, panY: 0,
 };
 // What a page test or a user reads back: load time and slider-to-frame times (ms).
@@ -82,15 +83,25 @@ let pendingSource = null;
 // Draws at the next animation frame, once for all changes until then. `source` names a change to time (a slider,
 // the view, the selection); null for cursor moves, which are not timed: a timed change that joins a pending cursor
 // redraw is timed from itself.
-function requestDraw(source) {
+function requestDraw(source, since = performance.now()) {
   if (pendingSince === null) {
-    pendingSince = performance.now();
+    pendingSince = since;
     pendingSource = source;
     requestAnimationFrame(drawFrame);
   } else if (source && !pendingSource) {
-    pendingSince = performance.now();
+    pendingSince = since;
     pendingSource = source;
   }
+}
+
+// A refocus that needs every view (letting go of the slider, a click on its track, a key, the tick boxes) is drawn
+// in two frames, so that one follows the change at once: the preview of every other view first (already summed
+// after a drag), then all views, timed from the same change ('focus-full').
+function requestFullRefocus(source) {
+  state.refocus.coarse = true;
+  state.refocus.fullNext = true;
+  state.refocus.fullSince = performance.now();
+  requestDraw(source);
 }
 
 function drawFrame() {
@@ -112,6 +123,11 @@ function drawFrame() {
                             (window.lfspStats.loadMs ? ` · loaded in ${(window.lfspStats.loadMs / 1000).toFixed(2)} s` : '');
   pendingSince = null;
   pendingSource = null;
+  if (state.refocus.fullNext) {
+    state.refocus.fullNext = false;
+    state.refocus.coarse = false;
+    requestDraw('focus-full', state.refocus.fullSince);
+  }
 }
 
 function drawEpis() {
@@ -392,16 +408,16 @@ function bindControls() {
   $('clear').addEventListener('click', () => { remember(); state.selected.fill(0); selectionChanged(); });
   $('undo').addEventListener('click', undo);
   $('redo').addEventListener('click', redo);
-  $('refocus').addEventListener('change', () => { state.refocus.on = $('refocus').checked; requestDraw('refocus'); });
-  $('all-in-focus').addEventListener('change', () => { state.refocus.allInFocus = $('all-in-focus').checked; requestDraw('refocus'); });
-  // Dragging previews with fewer views (render.js refocusedImage); letting go sums them all.
+  $('refocus').addEventListener('change', () => { state.refocus.on = $('refocus').checked; requestFullRefocus('refocus'); });
+  $('all-in-focus').addEventListener('change', () => { state.refocus.allInFocus = $('all-in-focus').checked; requestFullRefocus('refocus'); });
+  // Dragging previews with every other view (render.js refocusedImage); letting go sums them all.
   $('focus').addEventListener('input', () => {
     state.refocus.disparity = Number($('focus').value);
     state.refocus.coarse = true;
     document.querySelector('output[for=focus]').value = $('focus').value;
     requestDraw('focus');
   });
-  $('focus').addEventListener('change', () => { state.refocus.coarse = false; requestDraw('focus-release'); });
+  $('focus').addEventListener('change', () => requestFullRefocus('focus-release'));
   $('export').addEventListener('click', exportEdit);
   window.addEventListener('keydown', (event) => {
     if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement) return;
@@ -459,6 +475,10 @@ async function main() {
   paramsChanged(null);
   $('status').textContent = `loaded in ${(window.lfspStats.loadMs / 1000).toFixed(2)} s`;
   requestAnimationFrame(() => { window.lfspStats.ready = true; });
+  // Packing the rays for refocusing takes tens of milliseconds on 9x9x512x512: done while the page is idle, not in
+  // the frame of the first refocus.
+  const whenIdle = window.requestIdleCallback || ((callback) => setTimeout(callback, 200));
+  whenIdle(() => packedViews(data));
 }
 
 main();

@@ -61,58 +61,147 @@ function paintMap(values, range, rgba) {
 
 // Shift-and-sum over every view at one disparity, or at each pixel's own (all in focus), with the edit applied to
 // selected rays; cached until any of those change. While the slider is dragged (state.refocus.coarse) only every
-// other view in each direction (25 of 9x9, spanning the same aperture) and every other pixel in each direction are
-// summed; letting go sums all at full resolution.
+// other view in each direction is summed (25 of 9x9, spanning the same aperture); letting go sums them all.
 function refocusedImage(data, state) {
   const { coarse, allInFocus, disparity } = state.refocus;
   const key = `${allInFocus ? 'aif' : disparity}/${coarse}/${state.selectionVersion}/${state.editVersion}`;
   if (state.refocusCache && state.refocusCache.key === key) return state.refocusCache.rgb;
-  const { width: W, height: H, nu, nv, views } = data;
-  const N = W * H, uc = Math.floor(nu / 2), vc = Math.floor(nv / 2);
-  const sum = new Float32Array(N * 3), count = new Uint16Array(N);
-  const perPixel = allInFocus && data.disparity;
-  const step = coarse && !perPixel ? 2 : 1;  // views and pixels
-  const evenIfCoarse = (i) => i + (i % step);
-  const edit = state.edit && data.labels ? state.edit : null;
-  const selected = state.selected, labels = data.labels, colour = [0, 0, 0];
-  // Adds ray q (edited when selected) to pixel p.
-  const add = (p, q) => {
-    let r = views[3 * q], g = views[3 * q + 1], b = views[3 * q + 2];
-    if (edit && selected[labels[q]] === 1) {
-      edit.apply(r, g, b, edit, 1, colour);
-      r = colour[0]; g = colour[1]; b = colour[2];
-    }
-    sum[3 * p] += r; sum[3 * p + 1] += g; sum[3 * p + 2] += b;
-    count[p] += 1;
-  };
-  for (let v = vc % step; v < nv; v += step) for (let u = uc % step; u < nu; u += step) {
-    const base = (v * nu + u) * N;
-    if (perPixel) {
-      for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
-        const p = y * W + x, d = data.disparity[p];
-        const sx = Math.round(x - (u - uc) * d), sy = Math.round(y - (v - vc) * d);
-        if (sx >= 0 && sy >= 0 && sx < W && sy < H) add(p, base + sy * W + sx);
-      }
-      continue;
-    }
-    // One disparity: the whole view moves by one whole-pixel shift (nearest neighbour, as a preview).
+  const rays = editedPackedRays(data, state);
+  const rgb = allInFocus && data.disparity ? allInFocusImage(data, rays.words, coarse)
+                                           : shiftAndSum(data, state, rays, disparity, coarse);
+  state.refocusCache = { key, rgb };
+  return rgb;
+}
+
+// Every ray packed in one 32-bit word (red | green << 8 | blue << 16), so that a sum adds two channels at once
+// (shiftAndSum). Built once, on the first refocus or when the page is idle after loading (app.js).
+export function packedViews(data) {
+  if (data.packedViews) return data.packedViews;
+  const views = data.views, rays = views.length / 3, words = new Uint32Array(rays);
+  for (let q = 0; q < rays; ++q) words[q] = views[3 * q] | (views[3 * q + 1] << 8) | (views[3 * q + 2] << 16);
+  data.packedViews = words;
+  return words;
+}
+
+const byte = (value) => (value <= 0 ? 0 : value >= 255 ? 255 : Math.round(value));
+
+// The packed rays with the edit applied to every selected ray, so that refocusing sums edited colours: the views'
+// own words when nothing is edited, else a copy, rebuilt when the selection or the edit changes (not when the focus
+// does). The selected rays are listed once per selection, so an edit change recolours only them. `version` names
+// the content, for the sums kept between frames.
+function editedPackedRays(data, state) {
+  const views = data.views, labels = data.labels, selected = state.selected, base = packedViews(data);
+  if (!state.edit || !labels || !selected.includes(1)) return { words: base, version: 'views' };
+  const key = `${state.selectionVersion}/${state.editVersion}`;
+  const cache = state.editedRaysCache || (state.editedRaysCache = {});
+  if (cache.key === key) return { words: cache.words, version: key };
+  if (cache.selectionVersion !== state.selectionVersion) {
+    let count = 0;
+    for (let q = 0; q < labels.length; ++q) count += selected[labels[q]];
+    const rays = new Uint32Array(count);
+    for (let q = 0, n = 0; q < labels.length; ++q) if (selected[labels[q]] === 1) rays[n++] = q;
+    cache.rays = rays;
+    cache.selectionVersion = state.selectionVersion;
+  }
+  if (!cache.words) cache.words = new Uint32Array(base.length);
+  const words = cache.words, edit = state.edit, colour = [0, 0, 0];
+  words.set(base);
+  for (const q of cache.rays) {
+    edit.apply(views[3 * q], views[3 * q + 1], views[3 * q + 2], edit, 1, colour);
+    words[q] = byte(colour[0]) | (byte(colour[1]) << 8) | (byte(colour[2]) << 16);
+  }
+  cache.key = key;
+  return { words, version: key };
+}
+
+// The views used for a refocus: all, or every other one in each direction through the centre view.
+function refocusViews(data, coarse) {
+  const step = coarse ? 2 : 1, uc = Math.floor(data.nu / 2), vc = Math.floor(data.nv / 2);
+  const us = [], vs = [];
+  for (let u = uc % step; u < data.nu; u += step) us.push(u);
+  for (let v = vc % step; v < data.nv; v += step) vs.push(v);
+  return { us, vs, uc, vc };
+}
+
+// One disparity: every view moves by one whole-pixel shift (nearest neighbour, as a preview), the same offset for
+// all its rays, so each row of a view is added in one tight loop. Rays are packed words (packedRays) and summed two
+// channels per add: red and blue in the 16-bit halves of one sum, green in another (81 x 255 fits in 16 bits). How
+// many views reach a pixel is the product of how many reach its column (they depend on u only) and its row (v only),
+// so nothing is counted per ray.
+function shiftAndSum(data, state, rays, disparity, coarse) {
+  const { width: W, height: H } = data;
+  const N = W * H, words = rays.words;
+  // The sums are kept: letting go of the slider adds only the views the drag's preview left out.
+  const key = `${disparity}/${rays.version}`;
+  if (!state.refocusSums || state.refocusSums.redBlue.length !== N)
+    state.refocusSums = { redBlue: new Uint32Array(N), green: new Uint32Array(N), key: null, summed: new Set() };
+  const sums = state.refocusSums, { redBlue, green } = sums;
+  if (sums.key !== key) {
+    redBlue.fill(0);
+    green.fill(0);
+    sums.key = key;
+    sums.summed.clear();
+  }
+  const { us, vs, uc, vc } = refocusViews(data, coarse);
+  const columnCounts = new Uint16Array(W), rowCounts = new Uint16Array(H);
+  for (const u of us) {
+    const dx = Math.round((u - uc) * disparity);
+    for (let x = Math.max(0, dx); x < Math.min(W, W + dx); ++x) columnCounts[x] += 1;
+  }
+  for (const v of vs) {
+    const dy = Math.round((v - vc) * disparity);
+    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) rowCounts[y] += 1;
+  }
+  for (const v of vs) for (const u of us) {
+    const view = v * data.nu + u;
+    if (sums.summed.has(view)) continue;
+    sums.summed.add(view);
     const dx = Math.round((u - uc) * disparity), dy = Math.round((v - vc) * disparity);
-    const x0 = evenIfCoarse(Math.max(0, dx)), x1 = Math.min(W, W + dx);
-    for (let y = evenIfCoarse(Math.max(0, dy)); y < Math.min(H, H + dy); y += step) {
-      for (let p = y * W + x0, q = base + (y - dy) * W + x0 - dx, end = y * W + x1; p < end; p += step, q += step) {
-        if (edit && selected[labels[q]] === 1) { add(p, q); continue; }
-        sum[3 * p] += views[3 * q]; sum[3 * p + 1] += views[3 * q + 1]; sum[3 * p + 2] += views[3 * q + 2];
-        count[p] += 1;
+    const x0 = Math.max(0, dx), x1 = Math.min(W, W + dx);
+    if (x1 <= x0) continue;
+    const offset = view * N - dy * W - dx;  // pixel p of the sum takes ray p + offset
+    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) {
+      for (let p = y * W + x0, end = y * W + x1; p < end; ++p) {
+        const word = words[p + offset];
+        redBlue[p] += word & 0x00ff00ff;
+        green[p] += (word >>> 8) & 0xff;
       }
+    }
+  }
+  const rgb = new Uint8ClampedArray(3 * N);
+  for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
+    const p = y * W + x, c = columnCounts[x] * rowCounts[y];
+    if (c === 0) continue;
+    const scale = 1 / c;
+    rgb[3 * p] = (redBlue[p] & 0xffff) * scale;
+    rgb[3 * p + 1] = green[p] * scale;
+    rgb[3 * p + 2] = (redBlue[p] >>> 16) * scale;
+  }
+  return rgb;
+}
+
+// All in focus: each pixel sums the rays (packed words) of its own disparity, ray by ray.
+function allInFocusImage(data, words, coarse) {
+  const { width: W, height: H } = data;
+  const N = W * H;
+  const sum = new Float32Array(N * 3), count = new Uint16Array(N);
+  const { us, vs, uc, vc } = refocusViews(data, coarse);
+  for (const v of vs) for (const u of us) {
+    const base = (v * data.nu + u) * N;
+    for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
+      const p = y * W + x, d = data.disparity[p];
+      const sx = Math.round(x - (u - uc) * d), sy = Math.round(y - (v - vc) * d);
+      if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
+      const word = words[base + sy * W + sx];
+      sum[3 * p] += word & 0xff; sum[3 * p + 1] += (word >>> 8) & 0xff; sum[3 * p + 2] += (word >>> 16) & 0xff;
+      count[p] += 1;
     }
   }
   const rgb = new Uint8ClampedArray(N * 3);
-  for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
-    const p = y * W + x, s = step === 1 ? p : (y - (y % step)) * W + (x - (x % step));  // coarse: 2x2 blocks
-    const c = count[s] || 1;
-    rgb[3 * p] = sum[3 * s] / c; rgb[3 * p + 1] = sum[3 * s + 1] / c; rgb[3 * p + 2] = sum[3 * s + 2] / c;
+  for (let p = 0; p < N; ++p) {
+    const c = count[p] || 1;
+    rgb[3 * p] = sum[3 * p] / c; rgb[3 * p + 1] = sum[3 * p + 1] / c; rgb[3 * p + 2] = sum[3 * p + 2] / c;
   }
-  state.refocusCache = { key, rgb };
   return rgb;
 }
 
