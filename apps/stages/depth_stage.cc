@@ -25,6 +25,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["parameters"] = depth::ToJson(options);
   summary["occlusion_candidates"] = estimate.occlusion_candidates;
   summary["noise_sigma"] = estimate.noise_sigma;
+  summary["fine_band_snr"] = estimate.fine_band_snr;
   summary["presmooth_sigma"] = estimate.presmooth_sigma;
   summary["excluded_ring"] = estimate.excluded_ring;
   summary["detail_weight"] = estimate.detail_weight;

@@ -64,8 +64,9 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   };
   // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
   result.noise_sigma = EstimateChannelNoiseSigma(light_field.View(light_field.shape().Centre()));
+  result.fine_band_snr = FineBandSignalToNoise(light_field.View(light_field.shape().Centre()), options.cost);
   result.presmooth_sigma = options.presmooth_sigma < 0.0f
-                               ? std::max(PresmoothSigmaForNoise(result.noise_sigma), PresmoothFloorFor(light_field))
+                               ? AutomaticPresmoothSigma(light_field, result.noise_sigma, result.fine_band_snr)
                                : options.presmooth_sigma;
   std::optional<LightField> smoothed;
   if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
@@ -90,7 +91,8 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   result.excluded_ring = cost_options.excluded_ring;
   if (cost_options.detail_weight < 0.0f)
     cost_options.detail_weight =
-        DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma, cost_options);
+        DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma,
+                        DecodedFromSensor(light_field), result.fine_band_snr, cost_options);
   result.detail_weight = cost_options.detail_weight;
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   lap("cost_volume");

@@ -42,16 +42,31 @@ double MedianLocalRms(const cv::Mat& detail, double window_sigma) {
 
 cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma) { return HighPass(GreyOf(rgb), sigma); }
 
+double FineBandSignalToNoise(const cv::Mat& raw_centre, const CostOptions& options) {
+  if (!(options.detail_sigma > 0.0f)) return 0.0;
+  const double noise_in_band = EstimateNoiseFloor(raw_centre) * BandKernelNorm(0.0, options.detail_sigma);
+  const double window = options.detail_normalise_sigma > 0.0f ? options.detail_normalise_sigma : 4.0;
+  const double signal = MedianLocalRms(DetailHighPass(raw_centre, options.detail_sigma), window);
+  return noise_in_band > 0.0 ? signal / noise_in_band : 1e9;
+}
+
+double FineTextureShare(double fine_band_snr) {
+  return std::clamp((fine_band_snr - kFineTextureLow) / (kFineTextureHigh - kFineTextureLow), 0.0, 1.0);
+}
+
 float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
-                      const CostOptions& options) {
-  // Unsmoothed views are clean ones (PresmoothSigmaForNoise, PresmoothFloorFor): their detail term stays whole.
-  if (!(options.detail_sigma > 0.0f) || !(presmooth_sigma > 0.0)) return 1.0f;
+                      bool decoded_from_sensor, double fine_band_snr, const CostOptions& options) {
+  // Unsmoothed views are clean ones (PresmoothSigmaForNoise, PresmoothFloorFor), and a rendered light field's noise
+  // is white: their detail term stays whole.
+  if (!(options.detail_sigma > 0.0f) || !(presmooth_sigma > 0.0) || !decoded_from_sensor) return 1.0f;
+  const double share = FineTextureShare(fine_band_snr);
+  if (share <= 0.0) return 0.0f;
   const double noise_in_band = EstimateNoiseFloor(raw_centre) * BandKernelNorm(presmooth_sigma, options.detail_sigma);
   const double window = options.detail_normalise_sigma > 0.0f ? options.detail_normalise_sigma : 4.0;
   const double signal = MedianLocalRms(DetailHighPass(smoothed_centre, options.detail_sigma), window);
   const double margin = kDetailNoiseMargin * noise_in_band;
-  if (!(signal * signal + margin * margin > 0.0)) return 1.0f;
-  return static_cast<float>(signal * signal / (signal * signal + margin * margin));
+  if (!(signal * signal + margin * margin > 0.0)) return static_cast<float>(share);
+  return static_cast<float>(share * signal * signal / (signal * signal + margin * margin));
 }
 
 }  // namespace lfsp::depth

@@ -1,5 +1,7 @@
 #include "lfsp/depth/presmooth.h"
 
+#include "lfsp/depth/detail_weight.h"
+
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
@@ -16,6 +18,12 @@ int ExcludedRingFor(const LightField& light_field) {
 
 double PresmoothFloorFor(const LightField& light_field) {
   return DecodedFromSensor(light_field) ? kLensletPresmoothFloor : 0.0;
+}
+
+double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma, double fine_band_snr) {
+  const double floor = PresmoothFloorFor(light_field);
+  if (floor > 0.0 && fine_band_snr >= kFineTextureHigh) return floor;
+  return std::max(PresmoothSigmaForNoise(noise_sigma), floor);
 }
 
 LightField Presmoothed(const LightField& light_field, double sigma) {

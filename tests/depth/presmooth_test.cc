@@ -78,9 +78,14 @@ TEST(DetailWeight, FollowsTheDetailBandsSignalAgainstItsNoise) {
     cv::GaussianBlur(view, out, cv::Size(0, 0), 2.5);
     return out;
   };
-  EXPECT_EQ(DetailWeightFor(weak_noisy, weak_noisy, 0.0, options), 1.0f) << "unsmoothed views keep the whole term";
-  const float weak_weight = DetailWeightFor(weak_noisy, smoothed(weak_noisy), 2.5, options);
-  const float strong_weight = DetailWeightFor(strong_noisy, smoothed(strong_noisy), 2.5, options);
+  EXPECT_EQ(DetailWeightFor(weak_noisy, weak_noisy, 0.0, true, 10.0, options), 1.0f)
+      << "unsmoothed views keep the whole term";
+  EXPECT_EQ(DetailWeightFor(weak_noisy, smoothed(weak_noisy), 2.5, false, 1.0, options), 1.0f)
+      << "white noise on a rendered light field keeps the whole term";
+  EXPECT_EQ(DetailWeightFor(strong_noisy, smoothed(strong_noisy), 2.5, true, 2.6, options), 0.0f)
+      << "a decode whose finest band is mostly its own error leaves the term out";
+  const float weak_weight = DetailWeightFor(weak_noisy, smoothed(weak_noisy), 2.5, true, 10.0, options);
+  const float strong_weight = DetailWeightFor(strong_noisy, smoothed(strong_noisy), 2.5, true, 10.0, options);
   std::printf("detail weight: faint texture %.3f, strong texture %.3f\n", weak_weight, strong_weight);
   EXPECT_LT(weak_weight, 0.1f);
   EXPECT_GT(strong_weight, 0.5f);

@@ -42,6 +42,7 @@ struct DepthResult {
   int occlusion_candidates = 0;   // pixels that used the edge-split angular patch
   double occlusion_radius = 0.0;  // the radius used (after the automatic choice)
   double noise_sigma = 0.0;       // estimated noise of the centre view (Immerkaer), sample units
+  double fine_band_snr = 0.0;     // FineBandSignalToNoise of the unsmoothed centre view
   double presmooth_sigma = 0.0;   // the smoothing used, pixels (after the automatic choice)
   int excluded_ring = 0;          // views this close to the centre left out of the cost (after the automatic choice)
   float detail_weight = 1.0f;     // weight of the cost's detail term (after the automatic choice)
