@@ -65,7 +65,7 @@ bool IsLfToolboxCalibration(const json& json) { return json.is_object() && json.
 Calibration CalibrationFromLfToolbox(const json& calinfo, const std::string& source) {
   const JsonSource where(source);
   Calibration c;
-  c.model.H = MatrixFromJson(calinfo["EstCamIntrinsicsH"], "EstCamIntrinsicsH", source) * OurIndexToLfToolbox();
+  c.model.H = MatrixFromJson(calinfo.at("EstCamIntrinsicsH"), "EstCamIntrinsicsH", source) * OurIndexToLfToolbox();
   c.model.distortion = DistortionFrom(calinfo, source);
   c.shape = ShapeFrom(calinfo, source);
   c.camera_model = StringAt(calinfo, "CamInfo.CamModel", where).value_or("");

@@ -142,16 +142,10 @@ function shiftAndSum(data, state, rays, disparity, coarse) {
     sums.key = key;
     sums.summed.clear();
   }
-  const { us, vs, uc, vc } = refocusViews(data, coarse);
-  const columnCounts = new Uint16Array(W), rowCounts = new Uint16Array(H);
-  for (const u of us) {
-    const dx = Math.round((u - uc) * disparity);
-    for (let x = Math.max(0, dx); x < Math.min(W, W + dx); ++x) columnCounts[x] += 1;
-  }
-  for (const v of vs) {
-    const dy = Math.round((v - vc) * disparity);
-    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) rowCounts[y] += 1;
-  }
+  // The sums hold the preview's views or all of them (the preview's are a subset), never another set; a preview
+  // asked for after all views were summed at this disparity is the whole sum.
+  const allViews = data.nu * data.nv;
+  const { us, vs, uc, vc } = refocusViews(data, coarse && sums.summed.size < allViews);
   for (const v of vs) for (const u of us) {
     const view = v * data.nu + u;
     if (sums.summed.has(view)) continue;
@@ -167,6 +161,15 @@ function shiftAndSum(data, state, rays, disparity, coarse) {
         green[p] += (word >>> 8) & 0xff;
       }
     }
+  }
+  const columnCounts = new Uint16Array(W), rowCounts = new Uint16Array(H);
+  for (const u of us) {
+    const dx = Math.round((u - uc) * disparity);
+    for (let x = Math.max(0, dx); x < Math.min(W, W + dx); ++x) columnCounts[x] += 1;
+  }
+  for (const v of vs) {
+    const dy = Math.round((v - vc) * disparity);
+    for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) rowCounts[y] += 1;
   }
   const rgb = new Uint8ClampedArray(3 * N);
   for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
