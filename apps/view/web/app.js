@@ -98,6 +98,7 @@ function requestDraw(source, since = performance.now()) {
 // in two frames, so that one follows the change at once: the preview of every other view first (already summed
 // after a drag), then all views, timed from the same change ('focus-full').
 function requestFullRefocus(source) {
+  if (!state.refocus.on && !state.refocus.allInFocus) return requestDraw(source);  // turned off: the view alone
   state.refocus.coarse = true;
   state.refocus.fullNext = true;
   state.refocus.fullSince = performance.now();
