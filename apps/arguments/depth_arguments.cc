@@ -42,15 +42,17 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
   command
       ->add_option("--detail-weight", method.cost.detail_weight,
                    "Weight of the detail term of the cost (the locally normalised high-pass grey image); -1 = "
-                   "automatic: 1 on views that are not presmoothed, else the band's signal against its noise, "
-                   "m^2 / (m^2 + (16 n)^2), m the median local RMS of the centre view's detail, n the noise floor's "
-                   "share of it (0.15-0.2 on full-size lenslet decodes with weak texture)")
+                   "automatic: 1 on views that are not presmoothed and on rendered light fields; on a presmoothed "
+                   "lenslet decode the band's signal against its noise, m^2 / (m^2 + (16 n)^2), times the share of "
+                   "the finest band that is texture (0 below a fine-band signal-to-noise ratio of 4, 1 from 8; "
+                   "full-size decodes of weak textures read about 2.6 and leave the term out)")
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 100.0));
   command
       ->add_option("--presmooth", method.presmooth_sigma,
                    "Gaussian smoothing of every view before matching, pixels; -1 = automatic from the estimated noise "
-                   "(none on clean views, up to 2.5 px in low light), 0 = off")
+                   "(none on clean views, up to 2.5 px in low light; at least 1.5 px on a lenslet decode, exactly 1.5 "
+                   "px on one whose fine-band signal-to-noise ratio is 8 or more), 0 = off")
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 10.0));
   command->add_option("--median-radius", method.median_radius, "Weighted-median refinement radius (0 = off)")
