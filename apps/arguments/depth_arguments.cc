@@ -40,6 +40,14 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
+      ->add_option("--channel-weights", arguments.channel_weights,
+                   "Weights of the red, green and blue differences in the colour term, e.g. 1,1,1; default: "
+                   "automatic, 1,1,1 on clean views and inversely to each channel's noise on noisy ones (a Lytro "
+                   "decode's colour matrix leaves red and blue several times noisier than green)")
+      ->expected(3)
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  command
       ->add_option("--detail-weight", method.cost.detail_weight,
                    "Weight of the detail term of the cost (the locally normalised high-pass grey image); -1 = "
                    "automatic: 1 on views that are not presmoothed and on rendered light fields; on a presmoothed "
@@ -67,6 +75,12 @@ depth::DepthOptions ToDepthOptions(const DepthArguments& arguments) {
   if (arguments.dmin) method.range = DisparityRange{*arguments.dmin, *arguments.dmax};
   if (arguments.no_occlusion) method.occlusion_handling = false;
   if (arguments.winner_take_all) method.regularise = false;
+  if (!arguments.channel_weights.empty()) {
+    if (arguments.channel_weights.size() != 3)
+      throw Error(OptionName("channel_weights") + " takes three weights: red, green, blue");
+    method.cost.channel_weights = {arguments.channel_weights[0], arguments.channel_weights[1],
+                                   arguments.channel_weights[2]};
+  }
   return method;
 }
 

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <vector>
 
 #include "lfsp/depth/depth_estimator.h"
 
@@ -14,6 +15,7 @@ struct DepthArguments {
   std::optional<float> dmax;
   bool no_occlusion = false;
   bool winner_take_all = false;
+  std::vector<float> channel_weights;  // empty: automatic
   depth::DepthOptions method;
 };
 

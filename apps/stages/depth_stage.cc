@@ -29,6 +29,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["presmooth_sigma"] = estimate.presmooth_sigma;
   summary["excluded_ring"] = estimate.excluded_ring;
   summary["detail_weight"] = estimate.detail_weight;
+  summary["channel_weights"] = estimate.channel_weights;
   const std::optional<DisparityMap>& truth = bundle.disparity;
   if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
     const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(estimate.disparity, *truth);

@@ -26,6 +26,7 @@ constexpr int kFeatureChannels = 4;
 
 // The per-view cost terms (CostOptions), as plain numbers for the inner loop.
 struct TermWeights {
+  std::array<float, 3> channel;  // weights of |dR|, |dG|, |dB|
   float colour_weight;
   float colour_deadzone;
   float colour_truncation;
@@ -34,7 +35,7 @@ struct TermWeights {
 };
 
 // Bilinear samples of one view's feature row at (x + sx, y + sy), compared with the centre view's feature row:
-// cost[x] = colour_weight * min(max(|dR| + |dG| + |dB| - deadzone, 0), truncation)
+// cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
 //           + detail_weight * min(|d detail|, truncation),
 // added to total[x], and to half_a[x] where in_half_a[x] is 1 (if half_a is not null). Samples beyond the border are
 // clamped. `differences` is scratch for (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and
@@ -85,9 +86,11 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   // Separate, non-aliasing buffers so these loops vectorise too.
   const float* __restrict d = differences;
   float* __restrict cost = differences + kC * width;
+  const float wr = terms.channel[0], wg = terms.channel[1], wb = terms.channel[2];
   for (int x = 0; x < width; ++x) {
-    const float colour = std::min(std::max(d[kC * x] + d[kC * x + 1] + d[kC * x + 2] - terms.colour_deadzone, 0.0f),
-                                  terms.colour_truncation);
+    const float colour =
+        std::min(std::max(wr * d[kC * x] + wg * d[kC * x + 1] + wb * d[kC * x + 2] - terms.colour_deadzone, 0.0f),
+                 terms.colour_truncation);
     cost[x] = terms.colour_weight * colour + terms.detail_weight * std::min(d[kC * x + 3], terms.detail_truncation);
   }
   for (int x = 0; x < width; ++x) total[x] += cost[x];
@@ -207,7 +210,12 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   if (plans.empty())
     throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
                 " of the centre leaves none");
-  const TermWeights terms{options.colour_weight, options.colour_deadzone, options.colour_truncation,
+  std::array<float, 3> channel = options.channel_weights;
+  if (channel[0] < 0.0f) channel = {1.0f, 1.0f, 1.0f};
+  const TermWeights terms{channel,
+                          options.colour_weight,
+                          options.colour_deadzone,
+                          options.colour_truncation,
                           options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f,
                           options.detail_weight < 0.0f ? 1.0f : options.detail_weight};
   const SplitTable splits = MakeSplitTable(plans);

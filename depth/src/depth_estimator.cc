@@ -94,6 +94,9 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
         DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma,
                         DecodedFromSensor(light_field), result.fine_band_snr, cost_options);
   result.detail_weight = cost_options.detail_weight;
+  if (cost_options.channel_weights[0] < 0.0f)
+    cost_options.channel_weights = ChannelWeightsForNoise(light_field.View(light_field.shape().Centre()));
+  result.channel_weights = cost_options.channel_weights;
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   lap("cost_volume");
   if (options.aggregation_radius > 0) {

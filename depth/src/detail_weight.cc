@@ -50,6 +50,21 @@ double FineBandSignalToNoise(const cv::Mat& raw_centre, const CostOptions& optio
   return noise_in_band > 0.0 ? signal / noise_in_band : 1e9;
 }
 
+std::array<float, 3> ChannelWeightsForNoise(const cv::Mat& raw_centre) {
+  if (raw_centre.channels() != 3) return {1.0f, 1.0f, 1.0f};
+  std::vector<cv::Mat> channels;
+  cv::split(raw_centre, channels);
+  std::array<double, 3> sigma{};
+  for (int c = 0; c < 3; ++c) sigma[c] = EstimateNoiseSigma(channels[c]);
+  if (!(*std::max_element(sigma.begin(), sigma.end()) > kCleanNoiseLevel) ||
+      !(*std::min_element(sigma.begin(), sigma.end()) > 0.0))
+    return {1.0f, 1.0f, 1.0f};
+  const double inverse_sum = 1.0 / sigma[0] + 1.0 / sigma[1] + 1.0 / sigma[2];
+  std::array<float, 3> weights{};
+  for (int c = 0; c < 3; ++c) weights[c] = static_cast<float>(3.0 / sigma[c] / inverse_sum);
+  return weights;
+}
+
 double FineTextureShare(double fine_band_snr) {
   return std::clamp((fine_band_snr - kFineTextureLow) / (kFineTextureHigh - kFineTextureLow), 0.0, 1.0);
 }

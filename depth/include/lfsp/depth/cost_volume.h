@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include <cstddef>
 #include <opencv2/core/mat.hpp>
 #include <vector>
@@ -58,7 +60,10 @@ struct CostOptions {
   // Weight of the detail term; < 0 = automatic (EstimateDepth: DetailWeightFor, from the detail band's signal and
   // noise; BuildCostVolume alone reads < 0 as 1).
   float detail_weight = -1.0f;
-  float colour_weight = 3.0f;       // 0 = no colour term
+  float colour_weight = 3.0f;  // 0 = no colour term
+  // Weights of |dR|, |dG|, |dB| in the colour term (their sum 3 keeps the term's scale); a negative first weight =
+  // automatic (EstimateDepth: ChannelWeightsForNoise). BuildCostVolume alone reads a negative one as 1, 1, 1.
+  std::array<float, 3> channel_weights = {-1.0f, -1.0f, -1.0f};
   float colour_deadzone = 0.0f;     // colour differences below this are free (shading, view-dependent brightness)
   float colour_truncation = 0.12f;  // cap of the per-view sum of |RGB| differences, so occluded views cannot dominate
   // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -46,7 +48,8 @@ struct DepthResult {
   double presmooth_sigma = 0.0;   // the smoothing used, pixels (after the automatic choice)
   int excluded_ring = 0;          // views this close to the centre left out of the cost (after the automatic choice)
   float detail_weight = 1.0f;     // weight of the cost's detail term (after the automatic choice)
-  nlohmann::json timings;         // seconds per step
+  std::array<float, 3> channel_weights{1.0f, 1.0f, 1.0f};  // of |dR|, |dG|, |dB| (after the automatic choice)
+  nlohmann::json timings;                                  // seconds per step
 };
 
 // The disparity range to use: the options' if given, else the metadata's, else estimated from the views

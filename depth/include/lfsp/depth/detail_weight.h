@@ -43,6 +43,13 @@ constexpr double kFineTextureLow = 4.0;
 constexpr double kFineTextureHigh = 8.0;
 double FineTextureShare(double fine_band_snr);
 
+// The automatic CostOptions::channel_weights: on noisy views (a channel's EstimateNoiseSigma above
+// kCleanNoiseLevel) each channel's |difference| is weighted by the inverse of its noise, the three weights summing to
+// 3; on clean views 1, 1, 1. A Lytro decode's colour matrix amplifies the red and blue noise several times more than
+// the green: the full-size F01 two-horses decode reads 0.0104, 0.0038, 0.0137 (weights 0.67, 1.83, 0.51), so an even
+// sum lets the noisiest channels decide weak textures.
+std::array<float, 3> ChannelWeightsForNoise(const cv::Mat& raw_centre);
+
 float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
                       bool decoded_from_sensor, double fine_band_snr, const CostOptions& options);
 
