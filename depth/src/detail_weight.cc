@@ -59,9 +59,12 @@ std::array<float, 3> ChannelWeightsForNoise(const cv::Mat& raw_centre) {
   if (!(*std::max_element(sigma.begin(), sigma.end()) > kCleanNoiseLevel) ||
       !(*std::min_element(sigma.begin(), sigma.end()) > 0.0))
     return {1.0f, 1.0f, 1.0f};
-  const double inverse_sum = 1.0 / sigma[0] + 1.0 / sigma[1] + 1.0 / sigma[2];
+  // Inverse variance: the weighting that combines independent noisy measurements best.
+  std::array<double, 3> inverse{};
+  for (int c = 0; c < 3; ++c) inverse[c] = 1.0 / (sigma[c] * sigma[c]);
+  const double inverse_sum = inverse[0] + inverse[1] + inverse[2];
   std::array<float, 3> weights{};
-  for (int c = 0; c < 3; ++c) weights[c] = static_cast<float>(3.0 / sigma[c] / inverse_sum);
+  for (int c = 0; c < 3; ++c) weights[c] = static_cast<float>(3.0 * inverse[c] / inverse_sum);
   return weights;
 }
 
