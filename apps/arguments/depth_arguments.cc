@@ -40,10 +40,11 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
-      ->add_option("--channel-weights", arguments.channel_weights,
-                   "Weights of the red, green and blue differences in the colour term, e.g. 1,1,1; default: "
-                   "automatic, 1,1,1 on clean views and inversely to each channel's noise variance on noisy ones (a Lytro "
-                   "decode's colour matrix leaves red and blue several times noisier than green)")
+      ->add_option(
+          "--channel-weights", arguments.channel_weights,
+          "Weights of the red, green and blue differences in the colour term, e.g. 1,1,1; default: "
+          "automatic, 1,1,1 on clean views and inversely to each channel's noise variance on noisy ones (a Lytro "
+          "decode's colour matrix leaves red and blue several times noisier than green)")
       ->expected(3)
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
