@@ -59,6 +59,21 @@ TEST(Presmooth, AutomaticSmoothingRescuesDepthOnANoisyLightField) {
   EXPECT_EQ(clean.presmooth_sigma, 0.0) << "noise estimate on the clean views: " << clean.noise_sigma;
 }
 
+// A lenslet decode is smoothed at least by the floor; one whose texture reaches the pixel scale (fine-band ratio of
+// kFineTextureHigh or more) by the floor only, whatever its noise; rendered light fields follow the noise rule alone.
+TEST(Presmooth, AutomaticSmoothingFollowsTheSourceAndTheFineBand) {
+  LightField rendered(LightFieldShape{3, 3, 8, 8, 3});
+  LightField decoded(LightFieldShape{3, 3, 8, 8, 3});
+  decoded.metadata["decode"] = {{"demosaic", "gradient"}};
+  const double noisy = 0.02;  // the noise rule's 2.5 px
+  EXPECT_EQ(AutomaticPresmoothSigma(rendered, noisy, 20.0), 2.5);
+  EXPECT_EQ(AutomaticPresmoothSigma(decoded, noisy, 2.6), 2.5) << "a full-size decode of a weak texture";
+  EXPECT_EQ(AutomaticPresmoothSigma(decoded, noisy, kFineTextureHigh), kLensletPresmoothFloor)
+      << "the bundled mini sample (ratio 10.4)";
+  EXPECT_EQ(AutomaticPresmoothSigma(decoded, 0.0, 2.6), kLensletPresmoothFloor) << "a clean decode keeps the floor";
+  EXPECT_EQ(AutomaticPresmoothSigma(rendered, 0.0, 2.6), 0.0);
+}
+
 // The automatic detail weight: whole on unsmoothed views; on smoothed ones, low where the detail band holds little
 // more than noise (a weak texture) and high where a strong texture survives the smoothing.
 TEST(DetailWeight, FollowsTheDetailBandsSignalAgainstItsNoise) {
