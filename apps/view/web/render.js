@@ -124,27 +124,32 @@ function refocusViews(data, coarse) {
 }
 
 // One disparity: every view moves by one whole-pixel shift (nearest neighbour, as a preview), the same offset for
-// all its rays, so each row of a view is added in one tight loop. Rays are packed words (packedRays) and summed two
-// channels per add: red and blue in the 16-bit halves of one sum, green in another (81 x 255 fits in 16 bits). How
-// many views reach a pixel is the product of how many reach its column (they depend on u only) and its row (v only),
-// so nothing is counted per ray.
+// all its rays, so each row of a view is added in one tight loop. Rays are packed words (packedViews) and summed two
+// channels per add: red and blue in the 16-bit halves of one sum, green in another, as long as 255 times the views
+// fits in 16 bits (up to 257 views: 15x15 does, 17x17 is summed a channel per add). How many views reach a pixel is
+// the product of how many reach its column (they depend on u only) and its row (v only), so nothing is counted per
+// ray.
 function shiftAndSum(data, state, rays, disparity, coarse) {
   const { width: W, height: H } = data;
   const N = W * H, words = rays.words;
   // The sums are kept: letting go of the slider adds only the views the drag's preview left out.
   const key = `${disparity}/${rays.version}`;
-  if (!state.refocusSums || state.refocusSums.redBlue.length !== N)
-    state.refocusSums = { redBlue: new Uint32Array(N), green: new Uint32Array(N), key: null, summed: new Set() };
-  const sums = state.refocusSums, { redBlue, green } = sums;
+  if (!state.refocusSums || state.refocusSums.redBlue.length !== N) {
+    state.refocusSums = { redBlue: new Uint32Array(N), green: new Uint32Array(N), blue: new Uint32Array(N), key: null,
+                          summed: new Set() };
+  }
+  const sums = state.refocusSums, { redBlue, green, blue } = sums;
   if (sums.key !== key) {
     redBlue.fill(0);
     green.fill(0);
+    blue.fill(0);
     sums.key = key;
     sums.summed.clear();
   }
   // The sums hold the preview's views or all of them (the preview's are a subset), never another set; a preview
   // asked for after all views were summed at this disparity is the whole sum.
   const allViews = data.nu * data.nv;
+  const halves = allViews * 255 <= 0xffff;  // red and blue share a sum (else redBlue holds red alone)
   const { us, vs, uc, vc } = refocusViews(data, coarse && sums.summed.size < allViews);
   for (const v of vs) for (const u of us) {
     const view = v * data.nu + u;
@@ -155,10 +160,20 @@ function shiftAndSum(data, state, rays, disparity, coarse) {
     if (x1 <= x0) continue;
     const offset = view * N - dy * W - dx;  // pixel p of the sum takes ray p + offset
     for (let y = Math.max(0, dy); y < Math.min(H, H + dy); ++y) {
-      for (let p = y * W + x0, end = y * W + x1; p < end; ++p) {
-        const word = words[p + offset];
-        redBlue[p] += word & 0x00ff00ff;
-        green[p] += (word >>> 8) & 0xff;
+      const end = y * W + x1;
+      if (halves) {
+        for (let p = y * W + x0; p < end; ++p) {
+          const word = words[p + offset];
+          redBlue[p] += word & 0x00ff00ff;
+          green[p] += (word >>> 8) & 0xff;
+        }
+      } else {
+        for (let p = y * W + x0; p < end; ++p) {
+          const word = words[p + offset];
+          redBlue[p] += word & 0xff;
+          green[p] += (word >>> 8) & 0xff;
+          blue[p] += (word >>> 16) & 0xff;
+        }
       }
     }
   }
@@ -176,9 +191,9 @@ function shiftAndSum(data, state, rays, disparity, coarse) {
     const p = y * W + x, c = columnCounts[x] * rowCounts[y];
     if (c === 0) continue;
     const scale = 1 / c;
-    rgb[3 * p] = (redBlue[p] & 0xffff) * scale;
+    rgb[3 * p] = (halves ? redBlue[p] & 0xffff : redBlue[p]) * scale;
     rgb[3 * p + 1] = green[p] * scale;
-    rgb[3 * p + 2] = (redBlue[p] >>> 16) * scale;
+    rgb[3 * p + 2] = (halves ? redBlue[p] >>> 16 : blue[p]) * scale;
   }
   return rgb;
 }
