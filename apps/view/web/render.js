@@ -62,7 +62,7 @@ function paintMap(values, range, rgba) {
 // Shift-and-sum over every view at one disparity, or at each pixel's own (all in focus), with the edit applied to
 // selected rays; cached until any of those change. While the slider is dragged (state.refocus.coarse) only every
 // other view in each direction is summed (25 of 9x9, spanning the same aperture); letting go sums them all.
-function refocusedImage(data, state) {
+export function refocusedImage(data, state) {
   const { coarse, allInFocus, disparity } = state.refocus;
   const key = `${allInFocus ? 'aif' : disparity}/${coarse}/${state.selectionVersion}/${state.editVersion}`;
   if (state.refocusCache && state.refocusCache.key === key) return state.refocusCache.rgb;
