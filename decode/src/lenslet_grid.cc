@@ -95,12 +95,14 @@ LensletGrid LensletGrid::FromJson(const nlohmann::json& json, const std::string&
   grid.rows = RequireCount(json, "rows", source);
   grid.sensor_width = RequireCount(json, "sensor_width", source);
   grid.sensor_height = RequireCount(json, "sensor_height", source);
-  grid.rms_residual = json.value("rms_residual", 0.0);
-  grid.lenses_measured = json.value("lenses_measured", 0);
-  grid.lenses_used = json.value("lenses_used", 0);
-  grid.fit_method = json.value("fit_method", std::string());
-  grid.blocks = json.value("blocks", 0);
-  grid.blocks_used = json.value("blocks_used", 0);
+  // The fit statistics are optional, but present ones must have their type (an lfsp::Error, not a JSON exception).
+  const JsonSource where(source);
+  grid.rms_residual = NumberAt(json, "rms_residual", where).value_or(0.0);
+  grid.lenses_measured = IntAt(json, "lenses_measured", where).value_or(0);
+  grid.lenses_used = IntAt(json, "lenses_used", where).value_or(0);
+  grid.fit_method = StringAt(json, "fit_method", where).value_or("");
+  grid.blocks = IntAt(json, "blocks", where).value_or(0);
+  grid.blocks_used = IntAt(json, "blocks_used", where).value_or(0);
   if (!(grid.spacing_x > 2.0 && grid.spacing_y > 2.0) || grid.columns < 2 || grid.rows < 2 || grid.sensor_width <= 0 ||
       grid.sensor_height <= 0 || std::abs(grid.rotation) > 0.5)
     throw Error(source + ": lenslet grid out of range (spacing > 2 px, at least 2x2 lenses, |rotation| <= 0.5)");
