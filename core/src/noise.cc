@@ -65,13 +65,18 @@ double EstimateNoiseFloor(const cv::Mat& image) {
   return static_cast<double>(*tenth) / (kMedianResponsePerSigma * kTenthPercentileOfBlockMedians);
 }
 
-double EstimateChannelNoiseSigma(const cv::Mat& rgb) {
-  if (rgb.channels() == 1) return EstimateNoiseSigma(rgb);
+std::vector<double> EstimateNoiseSigmaPerChannel(const cv::Mat& image) {
+  if (image.channels() == 1) return {EstimateNoiseSigma(image)};
   std::vector<cv::Mat> channels;
-  cv::split(rgb, channels);
-  double largest = 0.0;
-  for (const cv::Mat& channel : channels) largest = std::max(largest, EstimateNoiseSigma(channel));
-  return largest;
+  cv::split(image, channels);
+  std::vector<double> sigmas;
+  for (const cv::Mat& channel : channels) sigmas.push_back(EstimateNoiseSigma(channel));
+  return sigmas;
+}
+
+double EstimateChannelNoiseSigma(const cv::Mat& rgb) {
+  const std::vector<double> sigmas = EstimateNoiseSigmaPerChannel(rgb);
+  return *std::max_element(sigmas.begin(), sigmas.end());
 }
 
 double SmoothingForNoise(double noise_sigma, double pixels_per_noise, double max_pixels) {

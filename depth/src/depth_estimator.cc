@@ -63,7 +63,9 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     progress.Tick();
   };
   // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
-  result.noise_sigma = EstimateChannelNoiseSigma(light_field.View(light_field.shape().Centre()));
+  const std::vector<double> channel_noise =
+      EstimateNoiseSigmaPerChannel(light_field.View(light_field.shape().Centre()));
+  result.noise_sigma = *std::max_element(channel_noise.begin(), channel_noise.end());  // EstimateChannelNoiseSigma
   result.fine_band_snr = FineBandSignalToNoise(light_field.View(light_field.shape().Centre()), options.cost);
   result.presmooth_sigma = options.presmooth_sigma < 0.0f
                                ? AutomaticPresmoothSigma(light_field, result.noise_sigma, result.fine_band_snr)
@@ -94,8 +96,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
         DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma,
                         DecodedFromSensor(light_field), result.fine_band_snr, cost_options);
   result.detail_weight = cost_options.detail_weight;
-  if (cost_options.channel_weights[0] < 0.0f)
-    cost_options.channel_weights = ChannelWeightsForNoise(light_field.View(light_field.shape().Centre()));
+  if (cost_options.channel_weights[0] < 0.0f) cost_options.channel_weights = ChannelWeightsForNoise(channel_noise);
   result.channel_weights = cost_options.channel_weights;
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   lap("cost_volume");

@@ -50,12 +50,8 @@ double FineBandSignalToNoise(const cv::Mat& raw_centre, const CostOptions& optio
   return noise_in_band > 0.0 ? signal / noise_in_band : 1e9;
 }
 
-std::array<float, 3> ChannelWeightsForNoise(const cv::Mat& raw_centre) {
-  if (raw_centre.channels() != 3) return {1.0f, 1.0f, 1.0f};
-  std::vector<cv::Mat> channels;
-  cv::split(raw_centre, channels);
-  std::array<double, 3> sigma{};
-  for (int c = 0; c < 3; ++c) sigma[c] = EstimateNoiseSigma(channels[c]);
+std::array<float, 3> ChannelWeightsForNoise(const std::vector<double>& sigma) {
+  if (sigma.size() != 3) return {1.0f, 1.0f, 1.0f};
   if (!(*std::max_element(sigma.begin(), sigma.end()) > kCleanNoiseLevel) ||
       !(*std::min_element(sigma.begin(), sigma.end()) > 0.0))
     return {1.0f, 1.0f, 1.0f};

@@ -114,7 +114,7 @@ TEST(ChannelWeights, FollowEachChannelsNoise) {
   cv::RNG random(9);
   random.fill(texture, cv::RNG::UNIFORM, 0.3, 0.7);
   cv::GaussianBlur(texture, texture, cv::Size(0, 0), 3.0);
-  const std::array<float, 3> clean = ChannelWeightsForNoise(texture);
+  const std::array<float, 3> clean = ChannelWeightsForNoise(EstimateNoiseSigmaPerChannel(texture));
   EXPECT_EQ(clean, (std::array<float, 3>{1.0f, 1.0f, 1.0f})) << "clean views weigh the channels evenly";
   std::vector<cv::Mat> channels;
   cv::split(texture, channels);
@@ -126,7 +126,7 @@ TEST(ChannelWeights, FollowEachChannelsNoise) {
   }
   cv::Mat noisy;
   cv::merge(channels, noisy);
-  const std::array<float, 3> weights = ChannelWeightsForNoise(noisy);
+  const std::array<float, 3> weights = ChannelWeightsForNoise(EstimateNoiseSigmaPerChannel(noisy));
   std::printf("channel weights for noise 0.012, 0.004, 0.016: %.2f %.2f %.2f\n", weights[0], weights[1], weights[2]);
   EXPECT_NEAR(weights[0] + weights[1] + weights[2], 3.0f, 1e-4f);
   // Inverse-variance weights: 3 / (1/0.012^2 + 1/0.004^2 + 1/0.016^2) times 1/sigma^2 = 0.28, 2.56, 0.16.

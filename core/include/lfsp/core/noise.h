@@ -1,6 +1,7 @@
 #pragma once
 
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 namespace lfsp {
 
@@ -17,6 +18,9 @@ double EstimateNoiseSigma(const cv::Mat& image);
 // so the grey estimate reads a noisy decode low: a full-size F01 capture reads 0.0018 grey, 0.0052 here, its true
 // per-channel noise being 0.011-0.027 (spatially correlated by resampling, which the 3x3 mask sees only in part).
 double EstimateChannelNoiseSigma(const cv::Mat& rgb);
+// The per-channel estimates themselves, one per channel of the image (what EstimateChannelNoiseSigma takes the largest
+// of; depth also weighs its colour channels by them).
+std::vector<double> EstimateNoiseSigmaPerChannel(const cv::Mat& image);
 
 // A texture-robust noise estimate of an RGB or grey image (grey version): the same 3x3 mask, its median absolute
 // response per 16x16 block, and the 10th percentile of those block medians (the flattest blocks), scaled so that

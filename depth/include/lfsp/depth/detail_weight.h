@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 #include "lfsp/depth/cost_volume.h"
 
@@ -43,12 +45,13 @@ constexpr double kFineTextureLow = 4.0;
 constexpr double kFineTextureHigh = 8.0;
 double FineTextureShare(double fine_band_snr);
 
-// The automatic CostOptions::channel_weights: on noisy views (a channel's EstimateNoiseSigma above
-// kCleanNoiseLevel) each channel's |difference| is weighted by the inverse of its noise variance, the three weights
-// summing to 3; on clean views 1, 1, 1. A Lytro decode's colour matrix amplifies the red and blue noise several times
-// more than the green: the full-size F01 two-horses decode reads weights 0.35, 2.45, 0.19, and an even sum let the
-// noisiest channels decide weak textures (pipeline BadPix 0.07 36.7 -> 17.1 %; inverse-noise weights 22.2 %).
-std::array<float, 3> ChannelWeightsForNoise(const cv::Mat& raw_centre);
+// The automatic CostOptions::channel_weights from the centre view's per-channel noise (EstimateNoiseSigmaPerChannel):
+// on noisy views (a channel's noise above kCleanNoiseLevel) each channel's |difference| is weighted by the inverse of
+// its noise variance, the three weights summing to 3; on clean views 1, 1, 1. A Lytro decode's colour matrix amplifies
+// the red and blue noise several times more than the green: the full-size F01 two-horses decode reads weights
+// 0.35, 2.45, 0.19, and an even sum let the noisiest channels decide weak textures (pipeline BadPix 0.07 36.7 -> 17.1
+// %; inverse-noise weights 22.2 %).
+std::array<float, 3> ChannelWeightsForNoise(const std::vector<double>& sigma);
 
 float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
                       bool decoded_from_sensor, double fine_band_snr, const CostOptions& options);
