@@ -10,6 +10,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
+import { expectedRefocus, worstDifference } from './shift_and_sum.mjs';
 import { check, runLfsp, startViewer, stopViewer } from './viewer_process.mjs';
 
 const args = process.argv.slice(2);
@@ -145,26 +146,7 @@ function median(values) {
   return sorted[Math.floor(sorted.length / 2)];
 }
 
-// The refocused picture against shift-and-sum written out here ray by ray: every view (or, while the slider is
-// dragged, every other one in each direction through the centre) moved by its whole-pixel shift
-// round((u - uc) d), round((v - vc) d), each pixel the mean of the rays that reach it.
-function expectedRefocus(meta, views, d, step) {
-  const { nu, nv, width: W, height: H } = meta;
-  const uc = Math.floor(nu / 2), vc = Math.floor(nv / 2), N = W * H;
-  const sum = new Float64Array(3 * N), count = new Uint32Array(N);
-  for (let v = vc % step; v < nv; v += step) for (let u = uc % step; u < nu; u += step) {
-    const dx = Math.round((u - uc) * d), dy = Math.round((v - vc) * d);
-    for (let y = 0; y < H; ++y) for (let x = 0; x < W; ++x) {
-      const sx = x - dx, sy = y - dy;
-      if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
-      const q = (v * nu + u) * N + sy * W + sx, p = y * W + x;
-      for (let c = 0; c < 3; ++c) sum[3 * p + c] += views[3 * q + c];
-      count[p] += 1;
-    }
-  }
-  return { sum, count };
-}
-
+// The refocused picture against shift-and-sum written out ray by ray (shift_and_sum.mjs).
 async function checkRefocus(page, viewer, meta) {
   const views = new Uint8Array(await (await fetch(`${viewer.url}api/views`)).arrayBuffer());
   await page.click('#refocus');
@@ -185,10 +167,7 @@ async function checkRefocus(page, viewer, meta) {
                                before, release ? 'focus-full' : 'focus');
     await nextFrame(page);
     const pixels = await canvasPixels(page);
-    const { sum, count } = expectedRefocus(meta, views, d, release ? 1 : 2);
-    let worst = 0;
-    for (let p = 0; p < meta.width * meta.height; ++p) for (let c = 0; c < 3; ++c)
-      if (count[p] > 0) worst = Math.max(worst, Math.abs(pixels[4 * p + c] - sum[3 * p + c] / count[p]));
+    const worst = worstDifference(pixels, 4, expectedRefocus(meta, views, d, release ? 1 : 2));
     check(worst <= 1, `refocus at d = ${d} (${release ? 'all views' : 'dragging: 25 views'}) matches shift-and-sum ` +
                       `to ${worst.toFixed(2)} of 255`);
   }
