@@ -40,7 +40,6 @@ Distortion DistortionFrom(const json& calinfo, const std::string& source) {
 
 // CalOptions.LFSize: [views down, views across, pixel rows, pixel columns, channels] (LFToolbox's LF(j, i, l, k, c)).
 LightFieldShape ShapeFrom(const json& calinfo, const std::string& source) {
-  const JsonSource where(source);
   const json* size = FindPath(calinfo, "CalOptions.LFSize");
   if (!size || !size->is_array() || size->size() < 4)
     throw Error(source +
