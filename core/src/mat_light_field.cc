@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -16,6 +15,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
+#include "mat5_structure.h"
 
 namespace lfsp {
 namespace fs = std::filesystem;
@@ -123,42 +123,9 @@ void SilenceMatio() {
   (void)silenced;
 }
 
-// A truncated v5 file reads through matio without complaint (the missing data come back as zeros), so the
-// top-level data elements are walked first: each 8-byte tag gives its type and byte count, and every element must
-// end inside the file. Uncompressed elements are padded to 8 bytes; miCOMPRESSED (15) ones are not.
-void CheckMat5Complete(const fs::path& path) {
-  const std::string name = path.string();
-  std::ifstream file(path, std::ios::binary);
-  const std::uint64_t size = FileBytes(path);
-  char header[128];
-  if (!file.read(header, sizeof header)) ThrowFileError(name, "not a MATLAB .mat file (shorter than its header)");
-  const bool swapped = header[126] == 'M' && header[127] == 'I';  // written on a machine of the other byte order
-  if (!swapped && !(header[126] == 'I' && header[127] == 'M'))
-    ThrowFileError(name, "not a MATLAB v5 .mat file (no endian mark at byte 126)");
-  const auto word = [swapped](const unsigned char* b) {
-    return swapped ? (std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) | (std::uint32_t{b[2]} << 8) | b[3]
-                   : (std::uint32_t{b[3]} << 24) | (std::uint32_t{b[2]} << 16) | (std::uint32_t{b[1]} << 8) | b[0];
-  };
-  std::uint64_t offset = 128;
-  unsigned char tag[8];
-  while (offset < size) {
-    file.seekg(static_cast<std::streamoff>(offset));
-    if (!file.read(reinterpret_cast<char*>(tag), 8))
-      ThrowFileError(name, "truncated .mat: a data element's tag at byte " + std::to_string(offset) + " is cut off");
-    const std::uint32_t type = word(tag), bytes = word(tag + 4);
-    std::uint64_t end = offset + 8 + bytes;
-    if (type != 15) end = (end + 7) / 8 * 8;  // miCOMPRESSED elements are not padded
-    if (offset + 8 + bytes > size)
-      ThrowFileError(name, "truncated .mat: the data element at byte " + std::to_string(offset) + " declares " +
-                               std::to_string(bytes) + " bytes, past the end of the file (" + std::to_string(size) +
-                               " bytes)");
-    offset = end;
-  }
-}
-
 LightField ReadV5(const fs::path& path) {
   const std::string name = path.string();
-  CheckMat5Complete(path);
+  CheckMat5Structure(path);
   SilenceMatio();
   const ForeignCrashGuard guard(name, "libmatio");
   std::unique_ptr<mat_t, MatCloser> mat(Mat_Open(name.c_str(), MAT_ACC_RDONLY));

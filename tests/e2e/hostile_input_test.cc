@@ -304,6 +304,17 @@ TEST(HostileInput, HdfNumbersOfAbsurdSizeAreRefusedBeforeReading) {
   }
 }
 
+// Found by make fuzz: an 882-byte v5 .mat whose compressed variable declares a dimensions array of 1 GB made libmatio
+// allocate and fill 3.2 GB (6.8 s) before it said there was no LF. The variable headers are now checked first.
+TEST(HostileInput, MatDeclaringAHugeDimensionsArrayIsRefusedCheaply) {
+  const TempDir temp;
+  fs::copy_file(testing::SourceDir() / "tests" / "core" / "fuzz" / "corpus" / "mat" / "huge_dimensions_array_v5.mat",
+                temp / "lf.mat");
+  const CommandResult result = RunLfsp({"info", (temp / "lf.mat").string()});
+  ExpectRefused(result, "declares a dimensions array of 1057030145 bytes");
+  EXPECT_LT(result.peak_rss_kb, 512L * 1024L);
+}
+
 // Found by make fuzz: this 1.6 KB file makes libhdf5 1.10 read through a null pointer (SIGSEGV) while it looks up
 // a name. lfsp cannot fix the library; ForeignCrashGuard turns the crash into the bad-input contract.
 TEST(HostileInput, FileThatCrashesLibhdf5GivesOneLineAndStatus2) {
