@@ -20,6 +20,9 @@ struct BenchCase {
   // for inputs made by another command (a full-size simulated capture) that would otherwise set the case's peak.
   std::function<void()> setup;
   std::function<std::string()> run;
+  // Optional, untimed: runs once after the timed repetitions and its text follows run's in the quality column, so
+  // that scoring a result (which can cost as much as making it) does not count in the stage's time.
+  std::function<std::string()> score;
   std::string baseline;
   int repetitions = 5;
   bool needs_shared_data = false;

@@ -52,6 +52,7 @@ struct CaseResult {
       const double seconds = stopwatch.Seconds();
       times += std::to_string(seconds) + " ";
     }
+    if (bench_case.score) quality += (quality.empty() ? "" : " ") + bench_case.score();
     for (char& c : quality)
       if (c == '\n') c = ' ';
     report = "ok " + quality + "\n" + times + "\n";

@@ -6,6 +6,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
 #include "lfsp/core/stopwatch.h"
+#include "lfsp/segment/khan_metrics.h"
 #include "lfsp/segment/lfsp.h"
 #include "lfsp/segment/metrics.h"
 #include "lfsp/segment/refocus.h"
@@ -64,24 +65,29 @@ const Labels* DenseLabels(const Labels* labels, std::optional<Labels>& storage) 
 
 nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
                            const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance) {
+  const bool consistency = gt_disparity != nullptr && gt_view_disparity != nullptr;
   nlohmann::json m;
   m["labels"] = LabelCount(labels);
   m["centre_labels"] = CentreLabelCount(labels);
   m["elr"] = EffectiveLabelRatio(labels);
   m["compactness"] = Compactness(labels);
+  m["khan"] = ScoreKhan(labels, gt_labels, consistency ? gt_view_disparity : nullptr);
   if (gt_labels != nullptr) {
     m["boundary_recall"] = BoundaryRecall(labels, *gt_labels, boundary_tolerance);
     m["undersegmentation_error"] = UndersegmentationError(labels, *gt_labels);
     m["undersegmentation_error_region"] = RegionUndersegmentationError(labels, *gt_labels);
     m["achievable_segmentation_accuracy"] = AchievableSegmentationAccuracy(labels, *gt_labels);
   }
-  if (gt_disparity != nullptr && gt_view_disparity != nullptr) {
+  if (consistency) {
     m["self_similarity"] = SelfSimilarity(labels, *gt_view_disparity);
     m["self_similarity_in_frame"] = SelfSimilarity(labels, *gt_view_disparity, true);
     const Labels reference = CarryCentreLabels(labels, *gt_disparity, *gt_view_disparity);
     m["self_similarity_reference"] = SelfSimilarity(reference, *gt_view_disparity);
     m["self_similarity_reference_in_frame"] = SelfSimilarity(reference, *gt_view_disparity, true);
     m["labels_per_pixel"] = LabelsPerPixel(labels, *gt_disparity, *gt_view_disparity);
+    // What a perfectly consistent segmentation with the same centre superpixels scores under Khan's definitions.
+    m["khan"]["self_similarity_reference"] = KhanSelfSimilarity(reference, *gt_view_disparity);
+    m["khan"]["labels_per_pixel_reference"] = KhanLabelsPerPixel(reference, *gt_view_disparity);
   }
   return m;
 }
@@ -97,6 +103,9 @@ nlohmann::json ScorePerViewLabels(const Labels& labels, const Labels* gt_labels,
                             "self_similarity_reference_in_frame", "labels_per_pixel"}) {
       metrics[key] = consistency[key];
     }
+    for (const char* key :
+         {"self_similarity", "labels_per_pixel", "self_similarity_reference", "labels_per_pixel_reference"})
+      metrics["khan"][key] = consistency["khan"][key];
   }
   metrics["note"] =
       "per-view method: self-similarity and labels per pixel after following each superpixel to the centre "

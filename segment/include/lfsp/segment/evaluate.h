@@ -33,7 +33,8 @@ struct EvaluationOptions {
 // All metrics of one labelling: labels/superpixel counts, ELR, compactness, and when the inputs allow it BR, UE
 // (Neubert-Protzel and per-region), ASA, self-similarity (all rays, Eq. 8-10; only rays landing inside the centre
 // view's frame; and both for the reference of CarryCentreLabels, what occlusions and borders cost on their own) and
-// labels per pixel.
+// labels per pixel; and under "khan" the same family as Khan et al.'s evaluation defines it (khan_metrics.h), with
+// the self-similarity and labels per pixel of the CarryCentreLabels reference.
 // `gt_view_disparity` is the ground-truth disparity of every ray (PropagateDisparity of the centre map).
 nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const DisparityMap* gt_disparity,
                            const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance);

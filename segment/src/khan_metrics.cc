@@ -1,0 +1,244 @@
+#include "lfsp/segment/khan_metrics.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+
+#include "lfsp/core/error.h"
+#include "lfsp/segment/metrics.h"
+
+namespace lfsp::segment {
+namespace {
+
+int MaxLabel(const Labels& labels) {
+  int max_label = -1;
+  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
+  return max_label;
+}
+
+void RequireViewDisparity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, const char* what) {
+  if (view_disparity.size() != labels.shape().Views())
+    throw Error(std::string(what) + ": need one disparity map per view");
+}
+
+// Where the Sobel gradient of the label map is non-zero (replicated border), as Khan et al.'s boundary images.
+cv::Mat SobelBoundary(const cv::Mat& labels) {
+  cv::Mat values, gx, gy;
+  labels.convertTo(values, CV_64F);  // exact: label values are far below 2^53
+  cv::Sobel(values, gx, CV_64F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(values, gy, CV_64F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Mat boundary = (gx != 0.0) | (gy != 0.0);
+  return boundary;
+}
+
+}  // namespace
+
+double KhanSelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  RequireViewDisparity(labels, view_disparity, "self-similarity (Khan)");
+  const LightFieldShape& shape = labels.shape();
+  const int max_label = MaxLabel(labels);
+  if (max_label < 0) return 0.0;
+  const std::size_t k_count = static_cast<std::size_t>(max_label) + 1;
+  const ViewIndex c = shape.Centre();
+  const int views = static_cast<int>(shape.Views());
+  // Per view and label: the sums of the carried x and y, and the ray count.
+  std::vector<double> sums(static_cast<std::size_t>(views) * k_count * 3, 0.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const double du = view.u - c.u, dv = view.v - c.v;
+    const std::int32_t* l = labels.ViewData(view);
+    const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
+    double* s = sums.data() + static_cast<std::size_t>(cam) * k_count * 3;
+    for (int y = 0; y < shape.height; ++y) {
+      for (int x = 0; x < shape.width; ++x) {
+        const std::int32_t k = l[y * shape.width + x];
+        const float disparity = d.at(y, x);
+        if (k < 0 || !std::isfinite(disparity)) continue;
+        double* entry = s + static_cast<std::size_t>(k) * 3;
+        entry[0] += x + du * disparity;
+        entry[1] += y + dv * disparity;
+        entry[2] += 1.0;
+      }
+    }
+  }
+  const double* centre = sums.data() + static_cast<std::size_t>(CameraNumber(c, shape.nu)) * k_count * 3;
+  double total = 0.0;
+  long long pairs = 0;
+  for (int cam = 0; cam < views; ++cam) {
+    const double* s = sums.data() + static_cast<std::size_t>(cam) * k_count * 3;
+    for (std::size_t k = 0; k < k_count; ++k) {
+      const double* here = s + k * 3;
+      const double* there = centre + k * 3;
+      if (here[2] == 0.0 || there[2] == 0.0) continue;  // absent from this view or from the centre: left out
+      total += std::hypot(here[0] / here[2] - there[0] / there[2], here[1] / here[2] - there[1] / there[2]);
+      ++pairs;
+    }
+  }
+  return pairs > 0 ? total / static_cast<double>(pairs) : 0.0;
+}
+
+double KhanLabelsPerPixel(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  RequireViewDisparity(labels, view_disparity, "labels per pixel (Khan)");
+  const LightFieldShape& shape = labels.shape();
+  const int w = shape.width, h = shape.height;
+  const ViewIndex c = shape.Centre();
+  const std::int32_t* centre = labels.ViewData(c);
+  const int views = static_cast<int>(shape.Views());
+  constexpr std::int32_t kNothing = std::numeric_limits<std::int32_t>::min();
+  std::vector<long long> differing(shape.ViewPixels(), 0);
+#pragma omp parallel
+  {
+    std::vector<long long> local(shape.ViewPixels(), 0);
+    std::vector<std::int32_t> carried(shape.ViewPixels());
+    std::vector<float> front(shape.ViewPixels());
+#pragma omp for schedule(dynamic)
+    for (int cam = 0; cam < views; ++cam) {
+      const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+      const double du = view.u - c.u, dv = view.v - c.v;
+      const std::int32_t* l = labels.ViewData(view);
+      const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
+      std::fill(carried.begin(), carried.end(), kNothing);
+      std::fill(front.begin(), front.end(), -std::numeric_limits<float>::infinity());
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const float disparity = d.at(y, x);
+          if (!std::isfinite(disparity)) continue;
+          const long cx = std::lround(x + du * disparity), cy = std::lround(y + dv * disparity);
+          if (cx < 0 || cy < 0 || cx >= w || cy >= h) continue;
+          const std::size_t at =
+              static_cast<std::size_t>(cy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(cx);
+          if (disparity > front[at]) {  // the front ray (larger disparity is nearer) is the one seen there
+            front[at] = disparity;
+            carried[at] = l[y * w + x];
+          }
+        }
+      }
+      for (int y0 = 0; y0 < h; ++y0) {
+        for (int x0 = 0; x0 < w; ++x0) {
+          const std::int32_t label =
+              carried[static_cast<std::size_t>(y0) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0)];
+          bool near = false;
+          for (int y = std::max(0, y0 - 1); y <= std::min(h - 1, y0 + 1) && !near; ++y)
+            for (int x = std::max(0, x0 - 1); x <= std::min(w - 1, x0 + 1); ++x)
+              near = near || centre[y * w + x] == label;
+          if (!near) ++local[static_cast<std::size_t>(y0) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0)];
+        }
+      }
+    }
+#pragma omp critical
+    for (std::size_t i = 0; i < differing.size(); ++i) differing[i] += local[i];
+  }
+  double sum = 0.0;
+  for (long long count : differing) sum += static_cast<double>(count);
+  return 1.0 + sum / static_cast<double>(differing.size());
+}
+
+double KhanBoundaryRecall(const Labels& labels, const Labels& gt) {
+  if (labels.shape().width != gt.shape().width || labels.shape().height != gt.shape().height ||
+      labels.shape().Views() != gt.shape().Views())
+    throw Error("boundary recall (Khan): the labels and the ground truth differ in shape");
+  const LightFieldShape& shape = labels.shape();
+  const int views = static_cast<int>(shape.Views());
+  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5));  // tolerance 2, chessboard
+  std::vector<double> recall(static_cast<std::size_t>(views), -1.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const cv::Mat truth = SobelBoundary(gt.View(view));
+    const int total = cv::countNonZero(truth);
+    if (total == 0) continue;  // no boundary to recall (Khan's code would return NaN for the whole light field)
+    cv::Mat near, hit;
+    cv::dilate(SobelBoundary(labels.View(view)), near, window);
+    cv::bitwise_and(truth, near, hit);
+    recall[static_cast<std::size_t>(cam)] = static_cast<double>(cv::countNonZero(hit)) / total;
+  }
+  double sum = 0.0;
+  int counted = 0;
+  for (double r : recall)
+    if (r >= 0.0) {
+      sum += r;
+      ++counted;
+    }
+  return counted > 0 ? sum / counted : -1.0;
+}
+
+double KhanAchievableAccuracy(const Labels& labels, const Labels& gt) {
+  if (labels.shape().width != gt.shape().width || labels.shape().height != gt.shape().height ||
+      labels.shape().Views() != gt.shape().Views())
+    throw Error("achievable accuracy (Khan): the labels and the ground truth differ in shape");
+  const LightFieldShape& shape = labels.shape();
+  // Khan's loop order: u outer, v inner; a later view wins only with a strictly larger overlap.
+  std::vector<ViewIndex> order;
+  for (int u = 0; u < shape.nu; ++u)
+    for (int v = 0; v < shape.nv; ++v) order.push_back({u, v});
+  struct Choice {
+    int object = 0;
+    long long overlap = 0;
+  };
+  std::unordered_map<int, Choice> object_of;
+  for (const ViewIndex view : order) {
+    const std::int32_t* l = labels.ViewData(view);
+    const std::int32_t* g = gt.ViewData(view);
+    std::unordered_map<int, std::map<int, long long>> overlaps;  // superpixel -> object -> rays (objects ordered)
+    for (std::size_t i = 0; i < shape.ViewPixels(); ++i)
+      if (g[i] >= 0) ++overlaps[l[i]][g[i]];
+    for (const auto& [superpixel, objects] : overlaps) {
+      Choice here;
+      for (const auto& [object, count] : objects)
+        if (count > here.overlap) here = {object, count};  // the most frequent; the smallest object on ties
+      Choice& best = object_of[superpixel];
+      if (here.overlap > best.overlap) best = here;
+    }
+  }
+  double sum = 0.0;
+  int counted = 0;
+  for (const ViewIndex view : order) {
+    const std::int32_t* l = labels.ViewData(view);
+    const std::int32_t* g = gt.ViewData(view);
+    long long right = 0, rays = 0;
+    for (std::size_t i = 0; i < shape.ViewPixels(); ++i) {
+      if (g[i] < 0) continue;
+      ++rays;
+      const auto found = object_of.find(l[i]);
+      right += found != object_of.end() && found->second.object == g[i];
+    }
+    if (rays == 0) continue;
+    sum += static_cast<double>(right) / static_cast<double>(rays);
+    ++counted;
+  }
+  return counted > 0 ? sum / counted : -1.0;
+}
+
+double KhanAverageSize(const Labels& labels) {
+  const cv::Mat centre = labels.View(labels.shape().Centre());
+  std::unordered_map<int, long long> area;
+  for (auto it = centre.begin<int>(); it != centre.end<int>(); ++it) ++area[*it];
+  if (area.empty()) return 0.0;
+  double sum = 0.0;
+  for (const auto& [label, count] : area) sum += std::sqrt(static_cast<double>(count));
+  return sum / static_cast<double>(area.size());
+}
+
+nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
+                         const std::vector<DisparityMap>* gt_view_disparity) {
+  nlohmann::json m;
+  m["size"] = KhanAverageSize(labels);
+  if (gt_view_disparity != nullptr) {
+    m["self_similarity"] = KhanSelfSimilarity(labels, *gt_view_disparity);
+    m["labels_per_pixel"] = KhanLabelsPerPixel(labels, *gt_view_disparity);
+  }
+  if (gt_labels != nullptr) {
+    m["boundary_recall"] = KhanBoundaryRecall(labels, *gt_labels);
+    m["undersegmentation_error"] = RegionUndersegmentationError(labels, *gt_labels);
+    m["achievable_accuracy"] = KhanAchievableAccuracy(labels, *gt_labels);
+  }
+  return m;
+}
+
+}  // namespace lfsp::segment
