@@ -25,18 +25,21 @@ simulate::RenderedLightField Render(const std::string& scene, int size, int view
   return simulate::RenderLightField(simulate::BuiltinScene(scene), options);
 }
 
-// Every view: is each label one 4-connected piece?
-bool EveryLabelConnectedInEveryView(const Labels& labels) {
-  const LightFieldShape& shape = labels.shape();
-  for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
-    const cv::Mat view = labels.View(ViewFromCameraNumber(cam, shape.nu));
-    std::set<int> seen(view.begin<int>(), view.end<int>());
-    for (int k : seen) {
-      cv::Mat mask = view == k, components;
-      if (cv::connectedComponents(mask, components, 4) - 1 != 1) return false;  // minus the background
-    }
+// The largest number of 4-connected pieces any label has in the given view.
+int MostPiecesOfALabel(const Labels& labels, ViewIndex view_index) {
+  const cv::Mat view = labels.View(view_index);
+  std::set<int> seen(view.begin<int>(), view.end<int>());
+  int most = 0;
+  for (int k : seen) {
+    cv::Mat mask = view == k, components;
+    most = std::max(most, cv::connectedComponents(mask, components, 4) - 1);  // minus the background
   }
-  return true;
+  return most;
+}
+
+// Is each label one 4-connected piece in the centre view (where slices are connected by construction)?
+bool EveryLabelConnectedInTheCentreView(const Labels& labels) {
+  return MostPiecesOfALabel(labels, labels.shape().Centre()) == 1;
 }
 
 TEST(Lfsp, ProjectionAloneIsFullSlicedAndViewConsistent) {
@@ -53,6 +56,28 @@ TEST(Lfsp, ProjectionAloneIsFullSlicedAndViewConsistent) {
   const double ss = SelfSimilarity(result.labels, scene.view_disparity, true);
   std::cout << "projection only: SS in frame " << ss << "\n";
   EXPECT_LT(ss, 1.2);
+}
+
+// A thin bar in front cuts a background superpixel in two in the side views where it passes over it. Both pieces
+// are the same surface patch, so both keep the label (a per-view connectivity clean-up used to merge the smaller
+// piece into a neighbour, which broke view consistency exactly next to thin occluders).
+TEST(Lfsp, ASuperpixelCutByAThinOccluderKeepsBothPieces) {
+  const simulate::RenderedLightField scene = Render("occluders", 128);
+  LfspParams params;
+  params.size = 16;
+  const LfspResult result = SegmentLightField(scene.light_field, scene.disparity, params);
+  int most = 0;
+  for (int cam = 0; cam < static_cast<int>(result.labels.shape().Views()); ++cam)
+    most = std::max(most, MostPiecesOfALabel(result.labels, ViewFromCameraNumber(cam, result.labels.shape().nu)));
+  EXPECT_GE(most, 2);
+  EXPECT_TRUE(EveryLabelConnectedInTheCentreView(result.labels));
+  // Measured at this small size: SS 2.021 px against the carried reference's 0.939 (2.054 with the clean-up). At
+  // 512 px (the bench) 0.845 against 0.814 (0.898 with the clean-up).
+  const Labels reference = CarryCentreLabels(result.labels, scene.disparity, scene.view_disparity);
+  const double ss = SelfSimilarity(result.labels, scene.view_disparity);
+  const double ss_reference = SelfSimilarity(reference, scene.view_disparity);
+  std::cout << "occluders 128: SS " << ss << " reference " << ss_reference << "\n";
+  EXPECT_LT(ss - ss_reference, 1.10);
 }
 
 TEST(Lfsp, BlockCoordinateDescentImprovesBoundariesAndKeepsTheLightFieldProperties) {
@@ -73,7 +98,7 @@ TEST(Lfsp, BlockCoordinateDescentImprovesBoundariesAndKeepsTheLightFieldProperti
   EXPECT_LT(ue_after, 0.5 * ue_before);  // observed 0.117 -> 0.021
   EXPECT_GT(br_after, br_before);
   EXPECT_EQ(EffectiveLabelRatio(after.labels), 1.0);
-  EXPECT_TRUE(EveryLabelConnectedInEveryView(after.labels));
+  EXPECT_TRUE(EveryLabelConnectedInTheCentreView(after.labels));
   ASSERT_EQ(after.planes.size(), static_cast<std::size_t>(after.superpixels));
 }
 
@@ -150,7 +175,7 @@ TEST(Lfsp, FollowsTheObjectsOfAShiftedTwoPlaneScene) {
   EXPECT_GT(asa, 0.995);
   EXPECT_GT(br, 0.95);
   EXPECT_EQ(EffectiveLabelRatio(result.labels), 1.0);
-  EXPECT_TRUE(EveryLabelConnectedInEveryView(result.labels));
+  EXPECT_TRUE(EveryLabelConnectedInTheCentreView(result.labels));
 }
 
 TEST(Lfsp, RejectsBadInput) {

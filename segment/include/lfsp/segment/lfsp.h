@@ -14,7 +14,6 @@ struct LfspTimings {
   double projection_seconds = 0.0;  // projection into all views + filling
   double refine_seconds = 0.0;      // block-coordinate descent (label sweeps + plane steps)
   double plane_seconds = 0.0;       // of which plane smoothing
-  double cleanup_seconds = 0.0;     // connectivity
   double total_seconds = 0.0;
 };
 
