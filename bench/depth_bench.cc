@@ -5,12 +5,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bench_case.h"
 #include "lfsp/core/pfm.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/core/views_folder.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/simulate/render.h"
 
 namespace lfsp::bench {
 namespace {
@@ -71,5 +75,47 @@ LFSP_BENCH_CASE {
 }
 
 LFSP_BENCH_CASE { return AntinousCase("antinous-no-occlusion", "near-disc. BadPix0.07 above full's", false, true); }
+
+namespace {
+
+// Ideal light fields of the simulator's scenes with thin occluders (issue 19), rendered once, untimed.
+std::vector<std::pair<std::string, simulate::RenderedLightField>>& HardScenes() {
+  static std::vector<std::pair<std::string, simulate::RenderedLightField>> scenes;
+  return scenes;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "depth";
+  c.name = "simulated-hard-scenes";
+  c.input = "occluders, comb, layers 9x9x512x512 (ideal light fields), 80 labels";
+  c.target = "each at or below SPO (HCI stratified: BadPix0.07 2.55 %, MSEx100 3.24); ~3 s each";
+  c.repetitions = 1;
+  c.prepare = [] {
+    for (const char* name : {"occluders", "comb", "layers"}) {
+      simulate::RenderOptions options;
+      options.width = options.height = 512;
+      HardScenes().emplace_back(name, simulate::RenderLightField(simulate::BuiltinScene(name), options));
+    }
+  };
+  c.run = [] {
+    std::string quality;
+    for (auto& [name, rendered] : HardScenes()) {
+      const Stopwatch stopwatch;
+      const depth::DepthResult result = depth::EstimateDepth(rendered.light_field, {});
+      const double seconds = stopwatch.Seconds();
+      const depth::DepthEvaluation e = depth::EvaluateDisparity(result.disparity, rendered.disparity);
+      char text[200];
+      std::snprintf(text, sizeof text, "%s: BadPix0.07 %.2f %%, MSEx100 %.2f (near disc. %.1f %%, %.1f), %.1f s; ",
+                    name.c_str(), e.all.badpix_007, e.all.mse_x100, e.near_discontinuities.badpix_007,
+                    e.near_discontinuities.mse_x100, seconds);
+      quality += text;
+    }
+    return quality;
+  };
+  return c;
+}
 
 }  // namespace lfsp::bench

@@ -127,6 +127,51 @@ json SpecularScene() {
           {"objects", {Background(-0.8f, Noise({0.4, 0.4, 0.4}, {0.7, 0.7, 0.7}, 0.08f, 51)), glossy, glossy2}}};
 }
 
+// One pixel of the 512 x 512 views the hard scenes are laid out for (the HCI benchmark's size; half a pixel at 256).
+constexpr float kPixel512 = 1.0f / 512.0f;
+
+json CombScene() {
+  // After HCI's backgammon: a comb of thin teeth in front of finely textured surfaces. Four groups of teeth, each
+  // tooth w px wide with w px gaps (w = 1..4), then a thin slanted bar that recedes along its length.
+  json objects = {Background(-0.9f, Noise({0.3, 0.3, 0.25}, {0.85, 0.8, 0.7}, 0.012f, 61)),
+                  Plane("board", 1, Rect(0.0f, 0.55f, 1.0f, 1.0f), -0.5f,
+                        Checker({0.85, 0.75, 0.55}, {0.3, 0.2, 0.12}, 0.03f, 10.0f), {0.0f, 1.2f}, {0.5f, 0.55f})};
+  const json tooth_texture = Noise({0.45, 0.08, 0.05}, {0.75, 0.2, 0.12}, 0.01f, 62);
+  for (int group = 0; group < 4; ++group) {
+    const float width = static_cast<float>(group + 1) * kPixel512;
+    float x = 0.04f + 0.24f * static_cast<float>(group);
+    for (int tooth = 0; tooth < 10; ++tooth, x += 2.0f * width)
+      objects.push_back(Plane("comb", 2, Rect(x, 0.06f, x + width, 0.62f), 1.0f, tooth_texture));
+  }
+  objects.push_back(Plane("slanted-bar", 3, Bar(0.02f, 0.95f, 0.98f, 0.66f, 2.0f * kPixel512), 1.5f,
+                          Noise({0.1, 0.2, 0.5}, {0.3, 0.5, 0.9}, 0.01f, 63), {-0.8f, 0.0f}, {0.5f, 0.8f}));
+  return {{"name", "comb"},
+          {"description",
+           "a comb of 1-4 px teeth with 1-4 px gaps and a receding 2 px bar in front of fine texture "
+           "(laid out for 512 x 512 views)"},
+          {"objects", objects}};
+}
+
+json LayersScene() {
+  // Several occlusion layers of thin structures: rails behind pickets behind a diagonal branch, a disc in front.
+  json objects = {Background(-1.3f, Checker({0.9, 0.9, 0.85}, {0.35, 0.4, 0.45}, 0.016f, 20.0f))};
+  const json rail_texture = Noise({0.5, 0.45, 0.3}, {0.7, 0.65, 0.45}, 0.015f, 71);
+  for (const float y : {0.3f, 0.5f, 0.7f})
+    objects.push_back(Plane("rails", 1, Rect(0.0f, y, 1.0f, y + 3.0f * kPixel512), -0.4f, rail_texture));
+  const json picket_texture = Noise({0.8, 0.45, 0.15}, {0.95, 0.65, 0.3}, 0.01f, 72);
+  for (float x = 0.05f; x < 0.95f; x += 0.06f)
+    objects.push_back(Plane("pickets", 2, Rect(x, 0.15f, x + 2.0f * kPixel512, 0.85f), 0.5f, picket_texture));
+  objects.push_back(Plane("branch", 3, Bar(0.1f, 0.1f, 0.9f, 0.9f, 4.0f * kPixel512), 1.3f,
+                          Noise({0.25, 0.15, 0.08}, {0.45, 0.3, 0.15}, 0.01f, 73), {0.5f, 0.5f}, {0.5f, 0.5f}));
+  objects.push_back(Plane("disc", 4, {{"type", "disc"}, {"centre", {0.75, 0.25}}, {"radius", 0.08}}, 1.9f,
+                          Noise({0.1, 0.45, 0.2}, {0.5, 0.85, 0.4}, 0.02f, 74)));
+  return {{"name", "layers"},
+          {"description",
+           "four occlusion layers of thin structures: 3 px rails, 2 px pickets, a 4 px slanted branch "
+           "and a disc over a fine checker (laid out for 512 x 512 views)"},
+          {"objects", objects}};
+}
+
 json CheckerboardScene() {
   return {
       {"name", "checkerboard"},
@@ -139,7 +184,7 @@ json CheckerboardScene() {
 }  // namespace
 
 std::vector<std::string> BuiltinSceneNames() {
-  return {"planes", "occluders", "two-horses", "spheres", "specular", "checkerboard"};
+  return {"planes", "occluders", "two-horses", "spheres", "specular", "checkerboard", "comb", "layers"};
 }
 
 Scene BuiltinScene(const std::string& name) {
@@ -156,6 +201,10 @@ Scene BuiltinScene(const std::string& name) {
     json_scene = SpecularScene();
   else if (name == "checkerboard")
     json_scene = CheckerboardScene();
+  else if (name == "comb")
+    json_scene = CombScene();
+  else if (name == "layers")
+    json_scene = LayersScene();
   else {
     std::string list;
     for (const auto& n : BuiltinSceneNames()) list += (list.empty() ? "" : ", ") + n;

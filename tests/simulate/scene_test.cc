@@ -35,6 +35,66 @@ TEST(Scene, BuiltinsHaveTheRequiredContent) {
   EXPECT_GT(range[1], 0.9f);
 }
 
+// Runs of `label` along row y of one view of the rendered labels: (first column, length) each.
+std::vector<std::pair<int, int>> LabelRuns(const Labels& labels, ViewIndex view, int y, int label) {
+  std::vector<std::pair<int, int>> runs;
+  const int w = labels.shape().width;
+  for (int x = 0; x < w; ++x) {
+    if (labels.at(view, y, x) != label) continue;
+    if (!runs.empty() && runs.back().first + runs.back().second == x)
+      ++runs.back().second;
+    else
+      runs.push_back({x, 1});
+  }
+  return runs;
+}
+
+TEST(Scene, CombHasTeethAndGapsOfOneToFourPixelsAt512) {
+  RenderOptions options;
+  options.nu = options.nv = 3;
+  options.width = options.height = 512;
+  options.supersampling = 1;
+  const RenderedLightField comb = RenderLightField(BuiltinScene("comb"), options);
+  // Row 150 crosses the teeth (label 2) above the board: 4 groups of 10 teeth, w px wide with w px gaps, w = 1..4.
+  const auto centre = LabelRuns(comb.labels, {1, 1}, 150, 2);
+  ASSERT_EQ(centre.size(), 40u);
+  for (int group = 0; group < 4; ++group)
+    for (int tooth = 0; tooth < 10; ++tooth) {
+      const auto& run = centre[static_cast<std::size_t>(group * 10 + tooth)];
+      EXPECT_EQ(run.second, group + 1) << "group " << group << " tooth " << tooth;
+      if (tooth > 0) {
+        EXPECT_EQ(run.first - centre[static_cast<std::size_t>(group * 10 + tooth - 1)].first, 2 * (group + 1));
+      }
+    }
+  // The teeth sit at disparity 1: one view step to the right moves them one pixel left (x - du d).
+  const auto right = LabelRuns(comb.labels, {2, 1}, 150, 2);
+  ASSERT_EQ(right.size(), centre.size());
+  for (std::size_t i = 0; i < centre.size(); ++i) EXPECT_EQ(right[i].first, centre[i].first - 1) << i;
+  EXPECT_FLOAT_EQ(comb.disparity.at(150, centre[0].first), 1.0f);
+  // The 1 px gaps show the background (-0.9) in the centre view.
+  EXPECT_FLOAT_EQ(comb.disparity.at(150, centre[0].first + 1), -0.9f);
+}
+
+TEST(Scene, LayersHasFourThinLayersInDepthOrder) {
+  RenderOptions options;
+  options.nu = options.nv = 3;
+  options.width = options.height = 512;
+  options.supersampling = 1;
+  const RenderedLightField layers = RenderLightField(BuiltinScene("layers"), options);
+  // A row between the rails crosses 2 px pickets (label 2) every 0.06 of the width (about 31 px).
+  const auto pickets = LabelRuns(layers.labels, {1, 1}, 200, 2);
+  ASSERT_GE(pickets.size(), 12u);
+  for (const auto& run : pickets) EXPECT_LE(run.second, 2);
+  // A column crosses the three 3 px rails (label 1), at disparity -0.4, behind the pickets (0.5) and the branch.
+  int rail_rows = 0;
+  for (int y = 0; y < 512; ++y) rail_rows += layers.labels.at({1, 1}, y, 100) == 1;
+  EXPECT_GE(rail_rows, 6);
+  EXPECT_LE(rail_rows, 9);
+  const auto range = BuiltinScene("layers").DisparityRange();
+  EXPECT_FLOAT_EQ(range[0], -1.3f);
+  EXPECT_FLOAT_EQ(range[1], 1.9f);
+}
+
 TEST(Scene, JsonRoundTripRendersIdentically) {
   for (const auto& name : BuiltinSceneNames()) {
     const Scene scene = BuiltinScene(name);
