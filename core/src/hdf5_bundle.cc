@@ -60,11 +60,28 @@ void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, std::siz
   }
 }
 
+// A string attribute. A fixed-length one is read into a buffer sized from the very datatype H5Aread writes with:
+// H5::Attribute's own string reader sizes its buffer from the native type instead, and a corrupt file can make the
+// two disagree (make fuzz found H5Aread writing 4 bytes into its 2-byte buffer).
 std::string ReadStringAttribute(const H5::H5Object& object, const char* name) {
   if (!object.attrExists(name)) return "";
   const H5::Attribute attribute = object.openAttribute(name);
-  std::string value;
-  attribute.read(attribute.getStrType(), value);
+  const H5::StrType type = attribute.getStrType();
+  if (type.isVariableStr()) {
+    std::string value;
+    attribute.read(type, value);
+    return value;
+  }
+  if (attribute.getSpace().getSimpleExtentNpoints() != 1)
+    throw H5::AttributeIException("ReadStringAttribute", std::string("attribute '") + name + "' is not one string");
+  constexpr std::size_t kLongestString = std::size_t{1} << 28;  // metadata JSON is kilobytes
+  const std::size_t bytes = type.getSize();
+  if (bytes == 0 || bytes > kLongestString)
+    throw H5::AttributeIException("ReadStringAttribute", std::string("attribute '") + name + "' declares a string of " +
+                                                             std::to_string(bytes) + " bytes");
+  std::string value(bytes, '\0');
+  attribute.read(type, value.data());
+  value.resize(value.find('\0') == std::string::npos ? bytes : value.find('\0'));  // null-padded strings
   return value;
 }
 
