@@ -15,12 +15,6 @@
 namespace lfsp::segment {
 namespace {
 
-int MaxLabel(const Labels& labels) {
-  int max_label = -1;
-  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
-  return max_label;
-}
-
 void RequireViewDisparity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, const char* what) {
   if (view_disparity.size() != labels.shape().Views())
     throw Error(std::string(what) + ": need one disparity map per view");
@@ -41,32 +35,11 @@ cv::Mat SobelBoundary(const cv::Mat& labels) {
 double KhanSelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
   RequireViewDisparity(labels, view_disparity, "self-similarity (Khan)");
   const LightFieldShape& shape = labels.shape();
-  const int max_label = MaxLabel(labels);
-  if (max_label < 0) return 0.0;
-  const std::size_t k_count = static_cast<std::size_t>(max_label) + 1;
+  std::size_t k_count = 0;
+  const std::vector<double> sums = CarriedCentroidSums(labels, view_disparity, false, k_count);
+  if (k_count == 0) return 0.0;
   const ViewIndex c = shape.Centre();
   const int views = static_cast<int>(shape.Views());
-  // Per view and label: the sums of the carried x and y, and the ray count.
-  std::vector<double> sums(static_cast<std::size_t>(views) * k_count * 3, 0.0);
-#pragma omp parallel for schedule(dynamic)
-  for (int cam = 0; cam < views; ++cam) {
-    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-    const double du = view.u - c.u, dv = view.v - c.v;
-    const std::int32_t* l = labels.ViewData(view);
-    const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
-    double* s = sums.data() + static_cast<std::size_t>(cam) * k_count * 3;
-    for (int y = 0; y < shape.height; ++y) {
-      for (int x = 0; x < shape.width; ++x) {
-        const std::int32_t k = l[y * shape.width + x];
-        const float disparity = d.at(y, x);
-        if (k < 0 || !std::isfinite(disparity)) continue;
-        double* entry = s + static_cast<std::size_t>(k) * 3;
-        entry[0] += x + du * disparity;
-        entry[1] += y + dv * disparity;
-        entry[2] += 1.0;
-      }
-    }
-  }
   const double* centre = sums.data() + static_cast<std::size_t>(CameraNumber(c, shape.nu)) * k_count * 3;
   double total = 0.0;
   long long pairs = 0;

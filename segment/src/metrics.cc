@@ -241,15 +241,15 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
   return out;
 }
 
-double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, bool in_frame_only) {
+std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
+                                        bool in_frame_only, std::size_t& label_count) {
   const LightFieldShape& shape = labels.shape();
   if (view_disparity.size() != shape.Views()) throw Error("self-similarity: need one disparity map per view");
   const ViewIndex c = shape.Centre();
   int max_label = -1;
   for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
-  if (max_label < 0) return 0.0;
-  const std::size_t k_count = static_cast<std::size_t>(max_label) + 1;
-  // Projected centroid sums per view and label: x, y, n.
+  label_count = static_cast<std::size_t>(max_label + 1);
+  const std::size_t k_count = label_count;
   const int views = static_cast<int>(shape.Views());
   std::vector<double> sums(static_cast<std::size_t>(views) * k_count * 3, 0.0);
 #pragma omp parallel for schedule(dynamic)
@@ -274,6 +274,16 @@ double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& vie
       }
     }
   }
+  return sums;
+}
+
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, bool in_frame_only) {
+  const LightFieldShape& shape = labels.shape();
+  const ViewIndex c = shape.Centre();
+  std::size_t k_count = 0;
+  const std::vector<double> sums = CarriedCentroidSums(labels, view_disparity, in_frame_only, k_count);
+  if (k_count == 0) return 0.0;
+  const int views = static_cast<int>(shape.Views());
   const int centre_cam = CameraNumber(c, shape.nu);
   double total = 0.0;
   int counted = 0;

@@ -49,12 +49,17 @@ std::vector<std::pair<int, int>> LabelRuns(const Labels& labels, ViewIndex view,
   return runs;
 }
 
-TEST(Scene, CombHasTeethAndGapsOfOneToFourPixelsAt512) {
+// 3x3 views at the 512 x 512 the hard scenes are laid out for, one ray per pixel (labels are exact).
+RenderedLightField RenderAt512(const Scene& scene) {
   RenderOptions options;
   options.nu = options.nv = 3;
   options.width = options.height = 512;
   options.supersampling = 1;
-  const RenderedLightField comb = RenderLightField(BuiltinScene("comb"), options);
+  return RenderLightField(scene, options);
+}
+
+TEST(Scene, CombHasTeethAndGapsOfOneToFourPixelsAt512) {
+  const RenderedLightField comb = RenderAt512(BuiltinScene("comb"));
   // Row 150 crosses the teeth (label 2) above the board: 4 groups of 10 teeth, w px wide with w px gaps, w = 1..4.
   const auto centre = LabelRuns(comb.labels, {1, 1}, 150, 2);
   ASSERT_EQ(centre.size(), 40u);
@@ -76,11 +81,7 @@ TEST(Scene, CombHasTeethAndGapsOfOneToFourPixelsAt512) {
 }
 
 TEST(Scene, LayersHasFourThinLayersInDepthOrder) {
-  RenderOptions options;
-  options.nu = options.nv = 3;
-  options.width = options.height = 512;
-  options.supersampling = 1;
-  const RenderedLightField layers = RenderLightField(BuiltinScene("layers"), options);
+  const RenderedLightField layers = RenderAt512(BuiltinScene("layers"));
   // A row between the rails crosses 2 px pickets (label 2) every 0.06 of the width (about 31 px).
   const auto pickets = LabelRuns(layers.labels, {1, 1}, 200, 2);
   ASSERT_GE(pickets.size(), 12u);

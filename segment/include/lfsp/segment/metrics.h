@@ -42,6 +42,12 @@ int LabelCount(const Labels& labels);
 // from the background side of the epipolar line. Views in camera order (cam = v * nu + u).
 std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const LightFieldShape& shape);
 
+// Per view (camera order) and label: the sums of x and y of the label's rays carried to the centre view by their
+// disparity, and the ray count, as [cam][label][3]; `label_count` is the largest label + 1 (0 if none). With
+// `in_frame_only`, rays landing outside the centre view's frame are left out. Both self-similarity definitions
+// (here and khan_metrics.h) read their centroids from it.
+std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
+                                        bool in_frame_only, std::size_t& label_count);
 // LFSP self-similarity (Eqs. 8-10): every slice projected to the centre view with the ground-truth disparity of its
 // rays, the distance of its centroid from the centre slice's centroid, averaged over the views where the label
 // appears, then over labels present in the centre view and in at least one other view. Pixels.
