@@ -7,8 +7,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <opencv2/core/mat.hpp>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "planes.h"
 
@@ -18,6 +22,7 @@ namespace {
 // Running sums of one 2D slice (label k in one view): mean colour and centroid follow label moves incrementally.
 struct Slice {
   double l = 0, a = 0, b = 0, x = 0, y = 0;
+  double inv_n = 0;  // 1 / n, kept beside n: every cost evaluation needs it and moves are 20 times rarer
   int n = 0;
 };
 
@@ -65,6 +70,9 @@ class Refiner {
 
  private:
   std::int32_t* ViewLabels(int cam) { return labels_.data() + static_cast<std::size_t>(cam) * view_pixels_; }
+  const std::int32_t* ViewLabels(int cam) const {
+    return labels_.data() + static_cast<std::size_t>(cam) * view_pixels_;
+  }
   Slice& SliceOf(int cam, int k) {
     return slices_[static_cast<std::size_t>(cam) * static_cast<std::size_t>(in_.superpixels) +
                    static_cast<std::size_t>(k)];
@@ -111,6 +119,7 @@ class Refiner {
     s.x += sign * x;
     s.y += sign * y;
     s.n += sign;
+    s.inv_n = s.n > 0 ? 1.0 / s.n : 0.0;
   }
 
   // Rounded disparity of the ray (x, y) of view offset (du, dv) if it belongs to label k (Eq. 2).
@@ -146,7 +155,8 @@ class Refiner {
   // Boundary term (Eq. 7) of label k for the ray (x, y) of view (u, v), before the lambda_b / 8 factor: spatial
   // neighbours in this view, angular neighbours at the candidate's rounded disparity in the 8 neighbouring views,
   // and the mixed ones around them.
-  // Stops early, returning a value above `limit`, once the cost exceeds it.
+  // Near the border it may stop early, returning a value above `limit`, once the cost exceeds it; inside, where the
+  // angular and mixed counts come from the same reads, it does not.
   // The clique is cut at the image border and at the edge views of the light field; the counts of differing
   // neighbours are rescaled to the full clique (8 spatial, 8 angular, 64 mixed) so that rays there resist label
   // changes as much as anywhere else (otherwise the edge views, with 3 or 5 neighbouring views instead of 8, drift).
@@ -156,15 +166,101 @@ class Refiner {
   // nearest pixel.
   double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, double limit) {
     const int rounded = static_cast<int>(std::lround(d));
-    const int w = width_;
-    int spatial = 0, spatial_valid = 8;
-    if (x >= 1 && y >= 1 && x + 1 < w && y + 1 < height_) {
-      const std::int32_t* p = own_view + y * w + x;
-      spatial = (p[-w - 1] != k) + (p[-w] != k) + (p[-w + 1] != k) + (p[-1] != k) + (p[1] != k) + (p[w - 1] != k) +
-                (p[w] != k) + (p[w + 1] != k);
-    } else {
-      spatial = CountBlock(own_view, x, y, k, spatial_valid);
+    const int reach = std::abs(rounded) + 1;  // the 3x3 blocks of the neighbouring views must lie inside the view
+    if (x >= reach && y >= reach && x + reach + 1 < width_ && y + reach < height_) {
+      return InteriorBoundaryCost(own_view, u, v, x, y, k, d, rounded);
     }
+    return BorderBoundaryCost(own_view, u, v, x, y, k, d, rounded, limit);
+  }
+
+  // BoundaryCost where every neighbour of the clique lies inside its view. Each neighbouring view's 3x3 block around
+  // the rounded angular neighbour is read once: its ring gives the mixed count and, since the bilinear window of the
+  // exact neighbour (within half a pixel of the block's centre) lies inside the block, its 2x2 part the angular one.
+  double InteriorBoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d,
+                              int rounded) const {
+    const int w = width_;
+    const std::int32_t* p = own_view + y * w + x;
+    const int spatial = (p[-w - 1] != k) + (p[-w] != k) + (p[-w + 1] != k) + (p[-1] != k) + (p[1] != k) +
+                        (p[w - 1] != k) + (p[w] != k) + (p[w + 1] != k);
+    const std::array<AxisTap, 3> tx{Tap(x, -1, d, rounded), Tap(x, 0, d, rounded), Tap(x, 1, d, rounded)};
+    const std::array<AxisTap, 3> ty{Tap(y, -1, d, rounded), Tap(y, 0, d, rounded), Tap(y, 1, d, rounded)};
+    double angular = 0.0;
+    int mixed = 0, views = 0;
+    for (int b = -1; b <= 1; ++b) {
+      const int nv = v + b;
+      if (nv < 0 || nv >= shape_.nv) continue;
+      const AxisTap& row_tap = ty[static_cast<std::size_t>(b + 1)];
+      for (int a = -1; a <= 1; ++a) {
+        const int nu = u + a;
+        if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
+        // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
+        const std::int32_t* c = ViewLabels(nv * shape_.nu + nu) + (y - b * rounded) * w + (x - a * rounded);
+        const unsigned same = SameAs3x3(c, w, k);
+        mixed += 8 - RingCount(same);
+        const AxisTap& column_tap = tx[static_cast<std::size_t>(a + 1)];
+        // Bit 0 of `low`: (x0, y0), bit 1: (x0 + 1, y0), bit 4: (x0, y0 + 1), bit 5: (x0 + 1, y0 + 1).
+        const unsigned low = same >> (row_tap.offset * 4 + column_tap.offset);
+        const double top = (1.0 - column_tap.weight) * !(low & 1u) + column_tap.weight * !(low & 2u);
+        const double bottom = (1.0 - column_tap.weight) * !(low & 16u) + column_tap.weight * !(low & 32u);
+        angular += (1.0 - row_tap.weight) * top + row_tap.weight * bottom;
+        ++views;
+      }
+    }
+    return spatial * p_.pen_spatial + Rescaled(angular, views, 8) * p_.pen_angular +
+           Rescaled(mixed, 8 * views, 64) * p_.pen_mixed;
+  }
+
+  // Where the bilinear window of an angular neighbour starts along one axis, relative to the top-left of the 3x3
+  // block around the rounded neighbour (0 or 1), and the weight of its second pixel. `step` is the view step a (or
+  // b) and `at` the ray's x (or y).
+  struct AxisTap {
+    int offset;
+    double weight;
+  };
+  static AxisTap Tap(int at, int step, double d, int rounded) {
+    const double position = at - step * d;
+    int first = static_cast<int>(position);
+    if (position < first) --first;  // floor
+    return {first - (at - step * rounded) + 1, position - first};
+  }
+
+  // Bit (4 row + column) set where the label of the 3x3 block centred on c equals k (bits 3, 7 and 11 are not
+  // part of the block). With SSE2 each row is one 4-lane compare, which reads one label past the block: the
+  // interior test leaves room for it.
+  static unsigned SameAs3x3(const std::int32_t* c, int stride, int k) {
+#if defined(__SSE2__)
+    const __m128i key = _mm_set1_epi32(k);
+    unsigned same = 0;
+    for (int row = 0; row < 3; ++row) {
+      const __m128i labels = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + (row - 1) * stride - 1));
+      same |= static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(labels, key)))) << (4 * row);
+    }
+    return same;
+#else
+    unsigned same = 0;
+    for (int row = 0; row < 3; ++row) {
+      const std::int32_t* r = c + (row - 1) * stride;
+      same |= (static_cast<unsigned>(r[-1] == k) | static_cast<unsigned>(r[0] == k) << 1 |
+               static_cast<unsigned>(r[1] == k) << 2)
+              << (4 * row);
+    }
+    return same;
+#endif
+  }
+
+  // The number of set bits among the 8 ring bits of a SameAs3x3 pattern (by table: without -mpopcnt, std::popcount
+  // is a library call, which cost 4 % of a segmentation).
+  static int RingCount(unsigned same) {
+    static constexpr std::array<std::uint8_t, 16> kBits = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    return kBits[same & 7u] + kBits[(same >> 4) & 5u] + kBits[(same >> 8) & 7u];
+  }
+
+  // BoundaryCost near the border of the view, where parts of the clique fall outside it.
+  double BorderBoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, int rounded,
+                            double limit) {
+    const int w = width_;
+    int spatial_valid = 8;
+    const int spatial = CountBlock(own_view, x, y, k, spatial_valid);
     // First the angular neighbours (the heaviest penalty), which usually settle a hopeless candidate; then the
     // mixed ones around them.
     struct Block {
@@ -248,7 +344,7 @@ class Refiner {
   double Cost(int cam, int u, int v, const std::int32_t* own_view, int x, int y, std::size_t index, int k, bool centre,
               double limit) {
     const Slice& s = SliceOf(cam, k);
-    const double inv_n = 1.0 / s.n;
+    const double inv_n = s.inv_n;
     const float* lab = LabOf(cam, index);
     const double dl = lab[0] - s.l * inv_n, da = lab[1] - s.a * inv_n, db = lab[2] - s.b * inv_n;
     // The slice's position centre is where the superpixel's centre-view centroid lands in this view along its
@@ -302,6 +398,14 @@ class Refiner {
     }
   }
 
+  // True if the eight flags from `flags` are all clear. Only the thread sweeping a view writes its flags while it
+  // runs (views of one phase are two steps apart, and Wake reaches one step), so a plain read is safe here.
+  static bool EightAsleep(const std::uint8_t* flags) {
+    std::uint64_t word = 0;
+    std::memcpy(&word, flags, sizeof word);
+    return word == 0;
+  }
+
   long long SweepView(int cam) {
     const ViewIndex view = ViewFromCameraNumber(cam, shape_.nu);
     const int u = view.u, v = view.v;
@@ -314,6 +418,10 @@ class Refiner {
       for (int x = 0; x < width_; ++x) {
         const std::size_t index =
             static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+        if (x % 8 == 0 && x + 8 <= width_ && EightAsleep(flags + index)) {
+          x += 7;  // most rays sleep after the first sweeps: skip them a word at a time
+          continue;
+        }
         if (__atomic_load_n(flags + index, __ATOMIC_RELAXED) == 0) continue;
         __atomic_store_n(flags + index, std::uint8_t{0}, __ATOMIC_RELAXED);
         const std::int32_t own = labels[index];
