@@ -1,7 +1,9 @@
 #include "stages/evaluate_stage.h"
 
+#include <optional>
 #include <vector>
 
+#include "lfsp/core/view_crop.h"
 #include "lfsp/depth/metrics.h"
 #include "lfsp/segment/metrics.h"
 
@@ -15,6 +17,15 @@ nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const La
   inputs.light_field = light_field;
   inputs.labels = &labels;
   inputs.gt_labels = truth.labels;
+  // Labels made on a decode's well-lit central views (segment's default) are scored against the same central views
+  // of the ground truth, which covers every view of the decode.
+  std::optional<Labels> central_truth;
+  const LightFieldShape& shape = labels.shape();
+  if (truth.labels != nullptr && truth.labels->shape().nu > shape.nu && shape.nu == shape.nv &&
+      truth.labels->shape().width == shape.width && truth.labels->shape().height == shape.height) {
+    central_truth = CentralViews(*truth.labels, shape.nu);
+    inputs.gt_labels = &*central_truth;
+  }
   inputs.gt_disparity = truth.disparity;
   inputs.segmentation_disparity = disparity;
   options.refocus = options.refocus && disparity != nullptr;

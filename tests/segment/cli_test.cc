@@ -75,6 +75,29 @@ TEST(SegmentCli, SegmentsAndEvaluatesASimulatedScene) {
   }
 }
 
+// Segment keeps a decode's well-lit central views; the ground truth of a simulated capture covers all of them. The
+// report scores the labels against the truth's central views (it used to stop with "differ in shape").
+TEST(SegmentCli, ScoresLabelsOfTheCentralViewsAgainstTheWholeGroundTruth) {
+  TempDir dir;
+  simulate::RenderOptions options;
+  options.nu = options.nv = 5;
+  options.width = options.height = 48;
+  const simulate::Scene scene = simulate::BuiltinScene("two-horses");
+  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, options);
+  WriteBundle(simulate::ToBundle(rendered, scene), dir / "scene.h5");
+
+  const auto segment = RunLfsp(
+      {"segment", (dir / "scene.h5").string(), "--views", "3", "--size", "12", "--out", (dir / "out.h5").string()});
+  ASSERT_EQ(segment.exit_status, 0) << segment.err;
+  const auto evaluate = RunLfsp({"evaluate", "segmentation", (dir / "out.h5").string(), "--gt-labels",
+                                 (dir / "scene.h5").string(), "--no-refocus"});
+  ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err;
+  const auto report = nlohmann::json::parse(evaluate.out);
+  EXPECT_GT(report["lfsp"]["boundary_recall"].get<double>(), 0.9);
+  EXPECT_GT(report["lfsp"]["khan"]["boundary_recall"].get<double>(), 0.9);
+  EXPECT_LT(report["lfsp"]["self_similarity"].get<double>(), 2.0);
+}
+
 TEST(SegmentCli, BadInputFailsWithStatusTwo) {
   TempDir dir;
   simulate::RenderOptions options;
