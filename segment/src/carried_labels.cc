@@ -7,6 +7,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/segment/metrics.h"
+#include "rounding.h"
 #include "warp.h"
 
 namespace lfsp::segment {
@@ -47,8 +48,8 @@ Labels CarryCentreLabels(const Labels& labels, const DisparityMap& centre_dispar
         depth[static_cast<std::size_t>(i)] = disparity;
         out[i] = Labels::kUnlabelled;
         if (!std::isfinite(disparity)) continue;
-        const int x0 = static_cast<int>(std::lround(x + du * disparity));
-        const int y0 = static_cast<int>(std::lround(y + dv * disparity));
+        const int x0 = RoundHalfAway(x + du * disparity);
+        const int y0 = RoundHalfAway(y + dv * disparity);
         if (x0 < 0 || y0 < 0 || x0 >= w || y0 >= h) continue;
         if (std::abs(centre_disparity.at(y0, x0) - disparity) > kSameSurfaceTolerance) continue;  // hidden from c
         out[i] = centre[y0 * w + x0];

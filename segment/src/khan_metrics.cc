@@ -11,6 +11,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/segment/metrics.h"
+#include "rounding.h"
 
 namespace lfsp::segment {
 namespace {
@@ -82,7 +83,7 @@ double KhanLabelsPerPixel(const Labels& labels, const std::vector<DisparityMap>&
         for (int x = 0; x < w; ++x) {
           const float disparity = d.at(y, x);
           if (!std::isfinite(disparity)) continue;
-          const long cx = std::lround(x + du * disparity), cy = std::lround(y + dv * disparity);
+          const long cx = RoundHalfAway(x + du * disparity), cy = RoundHalfAway(y + dv * disparity);
           if (cx < 0 || cy < 0 || cx >= w || cy >= h) continue;
           const std::size_t at =
               static_cast<std::size_t>(cy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(cx);

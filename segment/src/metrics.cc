@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
 #include <unordered_set>
+#include <vector>
 
 #include "lfsp/core/error.h"
+#include "rounding.h"
 #include "warp.h"
 
 namespace lfsp::segment {
@@ -50,19 +53,74 @@ struct Overlaps {
   long long pixels = 0;
 };
 
-Overlaps CountOverlaps(const cv::Mat& labels, const cv::Mat& gt) {
-  CheckSameSize(labels, gt);
+// Label ids in practice are small and non-negative (superpixels 0 .. K-1, a few objects): up to this many
+// (superpixel, region) pairs are counted in a dense table, which is an order of magnitude faster than hashing every
+// pixel (the evaluation of a full Illum capture spent a second there); other ids are hashed.
+constexpr std::int64_t kDensePairs = std::int64_t{1} << 20;
+
+// The range of the ids of `labels` over the pixels where gt >= 0 (min > max when there are none).
+void IdRanges(const cv::Mat& labels, const cv::Mat& gt, int& min_s, int& max_s, int& min_g, int& max_g) {
+  min_s = min_g = std::numeric_limits<int>::max();
+  max_s = max_g = std::numeric_limits<int>::min();
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* s = labels.ptr<int>(y);
+    const int* g = gt.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      if (g[x] < 0) continue;
+      min_s = std::min(min_s, s[x]);
+      max_s = std::max(max_s, s[x]);
+      min_g = std::min(min_g, g[x]);
+      max_g = std::max(max_g, g[x]);
+    }
+  }
+}
+
+std::uint64_t PairKey(int superpixel, int region) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(superpixel)) << 32) |
+         static_cast<std::uint32_t>(region);
+}
+
+Overlaps CountOverlapsHashed(const cv::Mat& labels, const cv::Mat& gt) {
   Overlaps o;
   for (int y = 0; y < labels.rows; ++y) {
     const int* s = labels.ptr<int>(y);
     const int* g = gt.ptr<int>(y);
     for (int x = 0; x < labels.cols; ++x) {
       if (g[x] < 0) continue;
-      ++o.joint[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[x])) << 32) |
-                static_cast<std::uint32_t>(g[x])];
+      ++o.joint[PairKey(s[x], g[x])];
       ++o.superpixel[s[x]];
       ++o.region[g[x]];
       ++o.pixels;
+    }
+  }
+  return o;
+}
+
+Overlaps CountOverlaps(const cv::Mat& labels, const cv::Mat& gt) {
+  CheckSameSize(labels, gt);
+  int min_s = 0, max_s = 0, min_g = 0, max_g = 0;
+  IdRanges(labels, gt, min_s, max_s, min_g, max_g);
+  if (min_s > max_s) return {};
+  const std::int64_t superpixels = std::int64_t{max_s} - min_s + 1, regions = std::int64_t{max_g} - min_g + 1;
+  if (superpixels * regions > kDensePairs) return CountOverlapsHashed(labels, gt);
+  std::vector<long long> joint(static_cast<std::size_t>(superpixels * regions), 0);
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* s = labels.ptr<int>(y);
+    const int* g = gt.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      if (g[x] >= 0) ++joint[static_cast<std::size_t>((std::int64_t{s[x]} - min_s) * regions + (g[x] - min_g))];
+    }
+  }
+  Overlaps o;
+  for (std::int64_t j = 0; j < superpixels; ++j) {
+    for (std::int64_t i = 0; i < regions; ++i) {
+      const long long count = joint[static_cast<std::size_t>(j * regions + i)];
+      if (count == 0) continue;
+      const int superpixel = static_cast<int>(j + min_s), region = static_cast<int>(i + min_g);
+      o.joint[PairKey(superpixel, region)] = count;
+      o.superpixel[superpixel] += count;
+      o.region[region] += count;
+      o.pixels += count;
     }
   }
   return o;
@@ -144,23 +202,47 @@ double AchievableSegmentationAccuracy2D(const cv::Mat& labels, const cv::Mat& gt
 
 double Compactness2D(const cv::Mat& labels) {
   if (labels.type() != CV_32SC1 || labels.empty()) throw Error("compactness: labels must be a CV_32SC1 map");
-  std::unordered_map<int, long long> area, perimeter;
+  double min_id = 0.0, max_id = 0.0;
+  cv::minMaxLoc(labels, &min_id, &max_id);
+  const auto ids = static_cast<std::int64_t>(max_id - min_id) + 1;
+  // Area and perimeter (4-neighbour edges to another label or the border) of each label; dense when the ids allow.
+  std::vector<long long> dense_area, dense_perimeter;
+  std::unordered_map<int, long long> hashed_area, hashed_perimeter;
+  const bool dense = ids <= kDensePairs;
+  if (dense) {
+    dense_area.assign(static_cast<std::size_t>(ids), 0);
+    dense_perimeter.assign(static_cast<std::size_t>(ids), 0);
+  }
+  const int base = static_cast<int>(min_id);
   for (int y = 0; y < labels.rows; ++y) {
+    const int* row = labels.ptr<int>(y);
+    const int* above = y > 0 ? labels.ptr<int>(y - 1) : nullptr;
+    const int* below = y + 1 < labels.rows ? labels.ptr<int>(y + 1) : nullptr;
     for (int x = 0; x < labels.cols; ++x) {
-      const int k = labels.at<int>(y, x);
-      ++area[k];
-      const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-      for (const auto& n : neighbours) {
-        const bool outside = n[0] < 0 || n[1] < 0 || n[0] >= labels.cols || n[1] >= labels.rows;
-        if (outside || labels.at<int>(n[1], n[0]) != k) ++perimeter[k];
+      const int k = row[x];
+      const int edges = (x == 0 || row[x - 1] != k) + (x + 1 == labels.cols || row[x + 1] != k) +
+                        (above == nullptr || above[x] != k) + (below == nullptr || below[x] != k);
+      if (dense) {
+        ++dense_area[static_cast<std::size_t>(k - base)];
+        dense_perimeter[static_cast<std::size_t>(k - base)] += edges;
+      } else {
+        ++hashed_area[k];
+        hashed_perimeter[k] += edges;
       }
     }
   }
   const double n = static_cast<double>(labels.total());
   double sum = 0.0;
-  for (const auto& [k, a] : area) {
-    const double l = static_cast<double>(perimeter[k]);
-    sum += (static_cast<double>(a) / n) * 4.0 * std::numbers::pi * static_cast<double>(a) / (l * l);
+  const auto add = [&](long long a, long long l) {
+    sum += (static_cast<double>(a) / n) * 4.0 * std::numbers::pi * static_cast<double>(a) /
+           (static_cast<double>(l) * static_cast<double>(l));
+  };
+  if (dense) {
+    for (std::size_t k = 0; k < dense_area.size(); ++k) {
+      if (dense_area[k] > 0) add(dense_area[k], dense_perimeter[k]);
+    }
+  } else {
+    for (const auto& [k, a] : hashed_area) add(a, hashed_perimeter[k]);
   }
   return sum;
 }
@@ -329,8 +411,8 @@ Labels FollowToCentre(const Labels& labels, const std::vector<DisparityMap>& vie
       for (int x = 0; x < w; ++x) {
         const float disparity = d.at(y, x);
         if (!std::isfinite(disparity)) continue;
-        const int x0 = static_cast<int>(std::lround(x + (view.u - c.u) * disparity));
-        const int y0 = static_cast<int>(std::lround(y + (view.v - c.v) * disparity));
+        const int x0 = RoundHalfAway(x + (view.u - c.u) * disparity);
+        const int y0 = RoundHalfAway(y + (view.v - c.v) * disparity);
         if (x0 < 0 || y0 < 0 || x0 >= w || y0 >= h) continue;
         ++votes[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(l[y * w + x])) << 32) |
                 static_cast<std::uint32_t>(centre[y0 * w + x0])];
@@ -381,8 +463,8 @@ double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity
       for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
         const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
         if (view == c) continue;
-        const int x = static_cast<int>(std::lround(x0 - (view.u - c.u) * d));
-        const int y = static_cast<int>(std::lround(y0 - (view.v - c.v) * d));
+        const int x = RoundHalfAway(x0 - (view.u - c.u) * d);
+        const int y = RoundHalfAway(y0 - (view.v - c.v) * d);
         if (x < 0 || y < 0 || x >= w || y >= h) continue;
         if (std::abs(view_disparity[static_cast<std::size_t>(cam)].at(y, x) - d) > 0.5f) continue;  // occluded
         const std::int32_t k = labels.ViewData(view)[y * w + x];
