@@ -22,9 +22,11 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
                     "Slanted-plane refinement of textureless pixels per superpixel (antinous: BadPix 0.07 5.9 -> "
                     "5.0 %, but worse on thin occluders); default: off");
   command
-      ->add_option("--occlusion-radius", method.occlusion.radius,
-                   "Pixels within this distance of a centre-view edge use the better half of the views; 0 = "
-                   "automatic (half the largest shift across the angular patch over the disparity range)")
+      ->add_option(
+          "--occlusion-radius", method.occlusion.radius,
+          "Pixels within this distance of a centre-view edge use the better half of the views; 0 = "
+          "automatic (the largest shift between the centre and an outer view over the disparity range, at most 12 px, "
+          "plus twice the presmoothing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command->add_option("--p1", method.sgm.p1, "SGM penalty for a one-label step")->capture_default_str();

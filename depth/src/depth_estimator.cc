@@ -80,8 +80,8 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (options.occlusion_handling) {
     OcclusionOptions occlusion_options = options.occlusion;
     if (occlusion_options.radius <= 0.0) {
-      occlusion_options.radius =
-          AutomaticOcclusionRadius(views.shape().nu, views.shape().nv, result.range.min, result.range.max);
+      occlusion_options.radius = AutomaticOcclusionRadius(views.shape().nu, views.shape().nv, result.range.min,
+                                                          result.range.max, result.presmooth_sigma);
     }
     result.occlusion_radius = occlusion_options.radius;
     occlusion = DetectOcclusionEdges(centre, occlusion_options);

@@ -26,9 +26,10 @@ int SplitForEdgeNormal(double normal_radians) {
   return ((split % kSplits) + kSplits) % kSplits;  // j and j + kSplits give the same two halves
 }
 
-double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max) {
+double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max, double presmooth_sigma) {
   const double offset = std::max((nu - 1) / 2, (nv - 1) / 2);
-  return std::clamp(0.5 * offset * static_cast<double>(disparity_max - disparity_min), 2.0, 32.0);
+  return std::clamp(offset * static_cast<double>(disparity_max - disparity_min), 2.0, kMaxAutomaticOcclusionRadius) +
+         2.0 * std::max(presmooth_sigma, 0.0);
 }
 
 int OcclusionMap::Candidates() const { return candidate.empty() ? 0 : cv::countNonZero(candidate); }

@@ -5,6 +5,7 @@
 
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/depth/occlusion.h"
 #include "lfsp/simulate/render.h"
 #include "synthetic_light_field.h"
 
@@ -69,6 +70,28 @@ TEST(SimulatedScene, OccludersSceneWithinBound) {
   // Measured BadPix 0.07 9.0 %, MSE x100 4.1 on 9x9x128x128.
   EXPECT_LT(e.all.badpix_007, 14.0);
   EXPECT_LT(e.all.mse_x100, 7.0);
+}
+
+// Background next to an occluder is hidden in the outer views on the occluder's side as far as the largest shift
+// between the centre and an outer view; matched on all views there, the occluder's edge, carried along with it,
+// wins and the occluder grows. The automatic radius covers that band; half of it (the old rule) did not.
+TEST(SimulatedScene, BackgroundBesideAnOccluderIsNotTakenByIt) {
+  simulate::RenderOptions render;
+  render.nu = render.nv = 7;
+  render.width = render.height = 256;
+  const simulate::Scene scene = simulate::BuiltinScene("two-horses");
+  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, render);
+  const Bundle bundle = simulate::ToBundle(rendered, scene);
+  const DepthResult automatic = EstimateDepth(bundle.light_field, {});
+  DepthOptions half_band;
+  half_band.occlusion.radius = 0.5 * AutomaticOcclusionRadius(7, 7, automatic.range.min, automatic.range.max);
+  const DepthResult narrow = EstimateDepth(bundle.light_field, half_band);
+  const DepthEvaluation with = EvaluateDisparity(automatic.disparity, rendered.disparity, SmallImageMetrics());
+  const DepthEvaluation without = EvaluateDisparity(narrow.disparity, rendered.disparity, SmallImageMetrics());
+  // Measured on 7x7x256x256: BadPix 0.07 4.7 %, MSE x100 5.7; with half the radius 7.9 % and 14.5.
+  EXPECT_LT(with.all.badpix_007, 6.0);
+  EXPECT_LT(with.all.mse_x100, 8.5);
+  EXPECT_LT(with.all.mse_x100, 0.6 * without.all.mse_x100);
 }
 
 }  // namespace
