@@ -29,6 +29,12 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
           "plus twice the presmoothing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--along-edge-penalty", method.cost.along_edge_penalty,
+                   "Near an edge, the views along it replace the whole patch where their cost times this is lower "
+                   "(sees into gaps between parallel occluders, e.g. a comb's teeth); 0 = off")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--p1", method.sgm.p1, "SGM penalty for a one-label step")->capture_default_str();
   command->add_option("--p2", method.sgm.p2, "SGM penalty for a larger jump (lowered across colour edges)")
       ->capture_default_str();

@@ -37,14 +37,13 @@ struct TermWeights {
 // Bilinear samples of one view's feature row at (x + sx, y + sy), compared with the centre view's feature row:
 // cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
 //           + detail_weight * min(|d detail|, truncation),
-// added to total[x], and to half_a[x] where in_half_a[x] is 1 (if half_a is not null). Samples beyond the border are
+// added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
+// is 1 (if along is not null). Samples beyond the border are
 // clamped. `differences` is scratch for (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and
 // chosen at run time: the interpolation runs over the interleaved samples as one contiguous, vectorised loop.
-__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* view, int width, int height,
-                                                                         int y, float sx, float sy,
-                                                                         const float* centre_row, TermWeights terms,
-                                                                         float* differences, float* total,
-                                                                         const float* in_half_a, float* half_a) {
+__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(
+    const float* view, int width, int height, int y, float sx, float sy, const float* centre_row, TermWeights terms,
+    float* differences, float* total, const float* in_half_a, float* half_a, const float* in_along, float* along) {
   constexpr int kC = kFeatureChannels;
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
@@ -96,6 +95,9 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   for (int x = 0; x < width; ++x) total[x] += cost[x];
   if (half_a != nullptr) {
     for (int x = 0; x < width; ++x) half_a[x] += cost[x] * in_half_a[x];
+  }
+  if (along != nullptr) {
+    for (int x = 0; x < width; ++x) along[x] += cost[x] * in_along[x];
   }
 }
 
@@ -155,6 +157,8 @@ struct SplitTable {
   std::array<std::array<bool, kSectors>, kSplits> in_half_a{};
   std::array<float, kSplits> views_a{};
   std::array<float, kSplits> views_b{};
+  std::array<std::array<bool, kSectors>, kSplits> along_edge{};  // the sectors at both ends of the split line
+  std::array<float, kSplits> views_along{};
 };
 
 SplitTable MakeSplitTable(const std::vector<ViewPlan>& plans) {
@@ -162,6 +166,8 @@ SplitTable MakeSplitTable(const std::vector<ViewPlan>& plans) {
   for (int j = 0; j < kSplits; ++j) {
     for (int k = 0; k < kSectors / 2; ++k) table.in_half_a[j][(j + k) % kSectors] = true;
     for (const ViewPlan& plan : plans) (table.in_half_a[j][plan.sector] ? table.views_a[j] : table.views_b[j]) += 1;
+    table.along_edge[j][j] = table.along_edge[j][(j + kSectors / 2) % kSectors] = true;
+    for (const ViewPlan& plan : plans) table.views_along[j] += table.along_edge[j][plan.sector] ? 1.0f : 0.0f;
   }
   return table;
 }
@@ -234,6 +240,10 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     std::vector<float> totals(static_cast<std::size_t>(labels) * tile_size);
     std::vector<float> halves(occlusion ? totals.size() : 0);
     std::vector<float> in_half_a(occlusion ? static_cast<std::size_t>(kSectors) * tile_size : 0);
+    // The same for the views along each pixel's edge (sectors at both ends of its split line).
+    const bool along_edge = occlusion && options.along_edge_penalty > 0.0f;
+    std::vector<float> alongs(along_edge ? totals.size() : 0);
+    std::vector<float> in_along(along_edge ? static_cast<std::size_t>(kSectors) * tile_size : 0);
     std::vector<float> differences(row_samples + static_cast<std::size_t>(width));  // samples, then costs
     auto row_of = [&](std::vector<float>& buffer, int index, int row) {
       return buffer.data() + static_cast<std::size_t>(index) * tile_size +
@@ -245,12 +255,17 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
       const int y_end = std::min(height, y_begin + tile_rows);
       std::fill(totals.begin(), totals.end(), 0.0f);
       std::fill(halves.begin(), halves.end(), 0.0f);
+      std::fill(alongs.begin(), alongs.end(), 0.0f);
       if (occlusion) {
         for (int y = y_begin; y < y_end; ++y) {
           const unsigned char* split = occlusion->split.ptr<unsigned char>(y);
           for (int s = 0; s < kSectors; ++s) {
             float* mask = row_of(in_half_a, s, y - y_begin);
             for (int x = 0; x < width; ++x) mask[x] = splits.in_half_a[split[x]][s] ? 1.0f : 0.0f;
+            if (along_edge) {
+              float* along_mask = row_of(in_along, s, y - y_begin);
+              for (int x = 0; x < width; ++x) along_mask[x] = splits.along_edge[split[x]][s] ? 1.0f : 0.0f;
+            }
           }
         }
       }
@@ -262,10 +277,11 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
           const float sy = -plan.dv * d;
           for (int y = y_begin; y < y_end; ++y) {
             const int row = y - y_begin;
-            AccumulateRowCost(plan.features, width, height, y, sx, sy,
-                              centre + static_cast<std::size_t>(y) * row_samples, terms, differences.data(),
-                              row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
-                              occlusion ? row_of(halves, l, row) : nullptr);
+            AccumulateRowCost(
+                plan.features, width, height, y, sx, sy, centre + static_cast<std::size_t>(y) * row_samples, terms,
+                differences.data(), row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
+                occlusion ? row_of(halves, l, row) : nullptr, along_edge ? row_of(in_along, plan.sector, row) : nullptr,
+                along_edge ? row_of(alongs, l, row) : nullptr);
           }
         }
       }
@@ -287,6 +303,11 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
               const float half_a = row_of(halves, l, row)[x];
               const float half = std::min(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
               cost = std::min(cost, options.half_patch_penalty * half);
+              // In a gap between two occluders (a comb's teeth, a fence) both halves hold an occluder, but the
+              // views along the edge see through the gap.
+              if (along_edge && splits.views_along[j] > 0) {
+                cost = std::min(cost, options.along_edge_penalty * row_of(alongs, l, row)[x] / splits.views_along[j]);
+              }
             }
             curve[l] = cost;
           }

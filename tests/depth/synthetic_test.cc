@@ -94,5 +94,25 @@ TEST(SimulatedScene, BackgroundBesideAnOccluderIsNotTakenByIt) {
   EXPECT_LT(with.all.mse_x100, 0.6 * without.all.mse_x100);
 }
 
+// A pixel in a 1-4 px gap between two teeth of the comb is hidden in the views on both sides of the half-patch
+// split; only the views along the teeth see it. Without them the gaps read as the teeth.
+TEST(SimulatedScene, GapsBetweenCombTeethReadAsTheBackground) {
+  simulate::RenderOptions render;
+  render.width = render.height = 512;  // the comb is laid out for 512 x 512 views
+  const simulate::Scene scene = simulate::BuiltinScene("comb");
+  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, render);
+  const Bundle bundle = simulate::ToBundle(rendered, scene);
+  const DepthResult along = EstimateDepth(bundle.light_field, {});
+  DepthOptions halves_only;
+  halves_only.cost.along_edge_penalty = 0.0f;
+  const DepthResult halves = EstimateDepth(bundle.light_field, halves_only);
+  const DepthEvaluation with = EvaluateDisparity(along.disparity, rendered.disparity);
+  const DepthEvaluation without = EvaluateDisparity(halves.disparity, rendered.disparity);
+  // Measured on 9x9x512x512: BadPix 0.07 5.0 %, MSE x100 12.6; with the halves only 10.5 % and 31.8.
+  EXPECT_LT(with.all.badpix_007, 7.0);
+  EXPECT_LT(with.all.mse_x100, 17.0);
+  EXPECT_LT(with.all.mse_x100, 0.5 * without.all.mse_x100);
+}
+
 }  // namespace
 }  // namespace lfsp::depth
