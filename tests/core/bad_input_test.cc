@@ -90,6 +90,24 @@ TEST(BadInput, GarbagePfmHeader) {
   ExpectErrorMentioning([&] { ReadPfm(temp / "short.pfm"); }, {"short.pfm", "truncated", "64"});
 }
 
+// A message that quotes a file's bytes stays one printable, valid UTF-8 line: an HDF5 file read as PFM quoted its
+// magic's byte 0x89 raw, which the terminal showed as garbage and Python could not turn into the message at all.
+TEST(BadInput, MessagesQuoteBinaryBytesAsEscapes) {
+  TempDir temp;
+  WriteBytes(temp / "bundle.pfm", std::string("\x89HDF\r\n\x1a\n") + std::string(16, '\0'));
+  ExpectErrorMentioning([&] { ReadPfm(temp / "bundle.pfm"); }, {"bundle.pfm", "not a PFM", "\\x89HDF"});
+  const auto info = RunLfsp({"info", (temp / "bundle.pfm").string()});
+  EXPECT_EQ(info.exit_status, 2);
+  EXPECT_EQ(std::count(info.err.begin(), info.err.end(), '\n'), 1) << info.err;
+  EXPECT_EQ(info.err.find('\x89'), std::string::npos) << info.err;
+
+  EXPECT_EQ(PrintableText("caf\xC3\xA9 \xE2\x82\xAC"), "caf\xC3\xA9 \xE2\x82\xAC");  // valid UTF-8 is kept
+  EXPECT_EQ(PrintableText("a\nb\tc"), "a\\x0Ab\\x09c");
+  EXPECT_EQ(PrintableText("\xC3(\xE2\x82"), "\\xC3(\\xE2\\x82");                  // broken sequences
+  EXPECT_EQ(PrintableText("\xED\xA0\x80\xC0\xAF"), "\\xED\\xA0\\x80\\xC0\\xAF");  // a surrogate, an overlong form
+  EXPECT_STREQ(Error("x\x89y").what(), "x\\x89y");
+}
+
 TEST(BadInput, Hdf5WithoutLightField) {
   TempDir temp;
   const fs::path path = temp / "nolf.h5";

@@ -5,12 +5,17 @@
 
 namespace lfsp {
 
+// `text` with every byte that is not printable, valid UTF-8 (control characters, line breaks, stray bytes of a
+// binary file) written as \xHH, so a message that quotes a file's bytes stays one line that a terminal, a log and
+// Python (whose str must be valid UTF-8) can all show. An HDF5 file read as PFM quoted its magic "\x89HDF" raw.
+std::string PrintableText(const std::string& text);
+
 // Thrown for bad input: a file that is missing, truncated, of the wrong size or with garbage metadata, or an
 // option out of range. The message names the file (or option), the field or offset, and what was expected.
 // The CLI prints it as one line and exits with status 2. Any other exception is an internal failure (status 1).
 class Error : public std::runtime_error {
  public:
-  explicit Error(const std::string& message) : std::runtime_error(message) {}
+  explicit Error(const std::string& message) : std::runtime_error(PrintableText(message)) {}
 };
 
 // Builds "<path>: <problem>", the shape of every message about a file.
