@@ -38,9 +38,9 @@ struct TermWeights {
 // cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
 //           + detail_weight * min(|d detail|, truncation),
 // added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
-// is 1 (if along is not null). Samples beyond the border are
-// clamped. `differences` is scratch for (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and
-// chosen at run time: the interpolation runs over the interleaved samples as one contiguous, vectorised loop.
+// is 1 (if along is not null). Samples beyond the border are clamped. `differences` is scratch for
+// (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and chosen at run time: the interpolation
+// runs over the interleaved samples as one contiguous, vectorised loop.
 __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(
     const float* view, int width, int height, int y, float sx, float sy, const float* centre_row, TermWeights terms,
     float* differences, float* total, const float* in_half_a, float* half_a, const float* in_along, float* along) {
@@ -157,8 +157,9 @@ struct SplitTable {
   std::array<std::array<bool, kSectors>, kSplits> in_half_a{};
   std::array<float, kSplits> views_a{};
   std::array<float, kSplits> views_b{};
-  std::array<std::array<bool, kSectors>, kSplits> along_edge{};  // the sectors at both ends of the split line
-  std::array<float, kSplits> views_along{};
+  // Per AlongPairForEdgeNormal pair a: whether sector s is a or a + kSectors/2, and how many views those hold.
+  std::array<std::array<bool, kSectors>, kSectors / 2> along_edge{};
+  std::array<float, kSectors / 2> views_along{};
 };
 
 SplitTable MakeSplitTable(const std::vector<ViewPlan>& plans) {
@@ -166,8 +167,10 @@ SplitTable MakeSplitTable(const std::vector<ViewPlan>& plans) {
   for (int j = 0; j < kSplits; ++j) {
     for (int k = 0; k < kSectors / 2; ++k) table.in_half_a[j][(j + k) % kSectors] = true;
     for (const ViewPlan& plan : plans) (table.in_half_a[j][plan.sector] ? table.views_a[j] : table.views_b[j]) += 1;
-    table.along_edge[j][j] = table.along_edge[j][(j + kSectors / 2) % kSectors] = true;
-    for (const ViewPlan& plan : plans) table.views_along[j] += table.along_edge[j][plan.sector] ? 1.0f : 0.0f;
+  }
+  for (int a = 0; a < kSectors / 2; ++a) {
+    table.along_edge[a][a] = table.along_edge[a][a + kSectors / 2] = true;
+    for (const ViewPlan& plan : plans) table.views_along[a] += table.along_edge[a][plan.sector] ? 1.0f : 0.0f;
   }
   return table;
 }
@@ -264,7 +267,8 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
             for (int x = 0; x < width; ++x) mask[x] = splits.in_half_a[split[x]][s] ? 1.0f : 0.0f;
             if (along_edge) {
               float* along_mask = row_of(in_along, s, y - y_begin);
-              for (int x = 0; x < width; ++x) along_mask[x] = splits.along_edge[split[x]][s] ? 1.0f : 0.0f;
+              const unsigned char* along = occlusion->along.ptr<unsigned char>(y);
+              for (int x = 0; x < width; ++x) along_mask[x] = splits.along_edge[along[x]][s] ? 1.0f : 0.0f;
             }
           }
         }
@@ -289,6 +293,7 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
         const int row = y - y_begin;
         const unsigned char* candidate = occlusion ? occlusion->candidate.ptr<unsigned char>(y) : nullptr;
         const unsigned char* split = occlusion ? occlusion->split.ptr<unsigned char>(y) : nullptr;
+        const unsigned char* along_pair = occlusion ? occlusion->along.ptr<unsigned char>(y) : nullptr;
         for (int x = 0; x < width; ++x) {
           float* curve = volume.Curve(y, x);
           const bool use_halves =
@@ -305,8 +310,9 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
               cost = std::min(cost, options.half_patch_penalty * half);
               // In a gap between two occluders (a comb's teeth, a fence) both halves hold an occluder, but the
               // views along the edge see through the gap.
-              if (along_edge && splits.views_along[j] > 0) {
-                cost = std::min(cost, options.along_edge_penalty * row_of(alongs, l, row)[x] / splits.views_along[j]);
+              const int a = along_pair[x];
+              if (along_edge && splits.views_along[a] > 0) {
+                cost = std::min(cost, options.along_edge_penalty * row_of(alongs, l, row)[x] / splits.views_along[a]);
               }
             }
             curve[l] = cost;

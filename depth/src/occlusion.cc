@@ -26,6 +26,12 @@ int SplitForEdgeNormal(double normal_radians) {
   return ((split % kSplits) + kSplits) % kSplits;  // j and j + kSplits give the same two halves
 }
 
+int AlongPairForEdgeNormal(double normal_radians) {
+  const double step = 2.0 * std::numbers::pi / kSectors;
+  const int sector = static_cast<int>(std::lround((normal_radians + std::numbers::pi / 2.0) / step));
+  return ((sector % (kSectors / 2)) + kSectors / 2) % (kSectors / 2);
+}
+
 double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max, double presmooth_sigma) {
   const double offset = std::max((nu - 1) / 2, (nv - 1) / 2);
   return std::clamp(offset * static_cast<double>(disparity_max - disparity_min), 2.0, kMaxAutomaticOcclusionRadius) +
@@ -78,21 +84,27 @@ OcclusionMap DetectOcclusionEdges(const cv::Mat& centre_rgb, const OcclusionOpti
   cv::Mat nearest;
   cv::distanceTransform(not_edge, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
   std::vector<unsigned char> split_of_label(static_cast<std::size_t>(edges.total()) + 1, 0);
+  std::vector<unsigned char> along_of_label(split_of_label.size(), 0);
   for (int y = 0; y < edges.rows; ++y) {
     for (int x = 0; x < edges.cols; ++x) {
       if (edges.at<unsigned char>(y, x) == 0) continue;
       const int label = nearest.at<int>(y, x);
       split_of_label[static_cast<std::size_t>(label)] =
           static_cast<unsigned char>(SplitForEdgeNormal(normal.at<float>(y, x)));
+      along_of_label[static_cast<std::size_t>(label)] =
+          static_cast<unsigned char>(AlongPairForEdgeNormal(normal.at<float>(y, x)));
     }
   }
   OcclusionMap map;
   cv::compare(distance, options.radius, map.candidate, cv::CMP_LE);
   if (cv::countNonZero(edges) == 0) map.candidate.setTo(0);
   map.split = cv::Mat(edges.size(), CV_8U, cv::Scalar(0));
+  map.along = cv::Mat(edges.size(), CV_8U, cv::Scalar(0));
   for (int y = 0; y < edges.rows; ++y) {
     for (int x = 0; x < edges.cols; ++x) {
-      map.split.at<unsigned char>(y, x) = split_of_label[static_cast<std::size_t>(nearest.at<int>(y, x))];
+      const auto label = static_cast<std::size_t>(nearest.at<int>(y, x));
+      map.split.at<unsigned char>(y, x) = split_of_label[label];
+      map.along.at<unsigned char>(y, x) = along_of_label[label];
     }
   }
   return map;

@@ -69,11 +69,12 @@ struct CostOptions {
   // Near an edge, a half of the angular patch replaces the whole one only where its cost times this factor is
   // still lower: half the views are noisier, so on textured, unoccluded surfaces the whole patch must win.
   float half_patch_penalty = 1.0f;
-  // Near an edge, the views along it (the two sectors at the ends of the split line) replace the whole patch where
-  // their cost times this factor is lower; 0 = off. A pixel in a gap between two occluders parallel to the edge is
-  // hidden on both sides of the split, but these views see it. They are few and cannot see the edge's own shift
-  // (their shifts run along it), so they must win clearly: 2.5 measured best (comb BadPix 0.07 10.5 -> 5.0 %, MSE x100
-  // 31.8 -> 12.6; occluders 5.1 % / 2.7 -> 5.0 % / 3.3; 1.3 made occluders 34 %).
+  // Near an edge, the views along it (the pair of opposite sectors nearest its direction, OcclusionMap::along)
+  // replace the whole patch where their cost times this factor is lower; 0 = off. A pixel in a gap between two
+  // occluders parallel to the edge is hidden on both sides of the split, but these views see it. They are few and
+  // cannot see the edge's own shift (their shifts run along it), so they must win clearly. Measured (BadPix 0.07 % /
+  // MSE x100): off: comb 10.5 / 31.8, occluders 5.1 / 2.7; 2.5: comb 3.0 / 7.3, occluders 3.8 / 3.3; 2.0 is a little
+  // better on comb but 1.5 puts occluders at 23 %, so 2.5 keeps a margin.
   float along_edge_penalty = 2.5f;
   // Views within this many steps of the centre view (Chebyshev distance) are left out of the cost; < 0 =
   // automatic (EstimateDepth: 1 for light fields decoded from a lenslet sensor, else 0). In a lenslet decode,

@@ -18,6 +18,10 @@ int SectorOfOffset(int du, int dv);
 // the views on the gradient's side fall in one half, the others in the other half.
 int SplitForEdgeNormal(double normal_radians);
 
+// The pair of opposite sectors a and a + kSectors/2 (a in 0..kSectors/2-1) nearest the direction of an edge whose
+// normal points at `normal_radians`: the views whose offsets run along the edge.
+int AlongPairForEdgeNormal(double normal_radians);
+
 struct OcclusionOptions {
   double canny_low = 20.0;  // Canny hysteresis thresholds (OpenCV, 3x3 Sobel, L2) on each 8-bit RGB channel
   double canny_high = 60.0;
@@ -32,16 +36,17 @@ struct OcclusionOptions {
 struct OcclusionMap {
   cv::Mat candidate;  // CV_8U, 255 = near an edge: use the better half of the views
   cv::Mat split;      // CV_8U, split index 0..kSplits-1 (meaningful where candidate)
+  cv::Mat along;      // CV_8U, AlongPairForEdgeNormal of the nearest edge (meaningful where candidate)
   int Candidates() const;
 };
 
 // max(|u - uc|, |v - vc|) * (dmax - dmin), clamped to [2, kMaxAutomaticOcclusionRadius] pixels, plus twice the
 // Gaussian presmoothing of the views: a background pixel this far from an occluder's edge is hidden in the outermost
 // view on the occluder's side when the two lie at the ends of the disparity range, and presmoothing spreads the edge
-// by about 2 sigma more. Half the shift and no blur term (the rule until 2026-12) left a band of background next to
-// occluders matched on all views, where the occluder's edge, carried along with it, won: the horses of the F01
-// two-horses light fields grew by several pixels (BadPix 0.07 on the ideal light field 8.9 % -> 4.9 %; on its
-// capture, presmoothed by 2.5 px, 15.3 % with the full shift alone, 9.9 % with the blur term).
+// by about 2 sigma more. With half the shift and no blur term, a band of background next to occluders was matched
+// on all views, where the occluder's edge, carried along with it, won: the horses of the F01 two-horses light
+// fields grew by several pixels (BadPix 0.07 on the ideal light field 8.9 % -> 4.9 %; on its capture, presmoothed
+// by 2.5 px, 15.3 % with the full shift alone, 9.9 % with the blur term).
 // The cap: a real edge rarely separates the two ends of a wide range, and beyond it the half patch only discards
 // views (antinous, range 6.1 over 9x9 views: 5.86 % at 12.2 px, 6.3 % at 24.4 px).
 constexpr double kMaxAutomaticOcclusionRadius = 12.0;
