@@ -3,6 +3,7 @@
 #include <optional>
 #include <vector>
 
+#include "lfsp/core/error.h"
 #include "lfsp/core/view_crop.h"
 #include "lfsp/depth/metrics.h"
 #include "lfsp/segment/metrics.h"
@@ -21,10 +22,18 @@ nlohmann::json EvaluateSegmentationParts(const LightField* light_field, const La
   // of the ground truth, which covers every view of the decode.
   std::optional<Labels> central_truth;
   const LightFieldShape& shape = labels.shape();
-  if (truth.labels != nullptr && truth.labels->shape().nu > shape.nu && shape.nu == shape.nv &&
-      truth.labels->shape().width == shape.width && truth.labels->shape().height == shape.height) {
-    central_truth = CentralViews(*truth.labels, shape.nu);
-    inputs.gt_labels = &*central_truth;
+  if (truth.labels != nullptr) {
+    const LightFieldShape& whole = truth.labels->shape();
+    const bool more_views = whole.nu != shape.nu || whole.nv != shape.nv;
+    if (more_views && whole.width == shape.width && whole.height == shape.height) {
+      if (shape.nu != shape.nv || whole.nu < shape.nu || whole.nv < shape.nv || (whole.nu - shape.nu) % 2 != 0 ||
+          (whole.nv - shape.nv) % 2 != 0) {
+        throw Error("the ground-truth labels have " + ToString(whole) + " and the segmentation " + ToString(shape) +
+                    ": the segmentation's views are not the central views of the truth's");
+      }
+      central_truth = CentralViews(*truth.labels, shape.nu);
+      inputs.gt_labels = &*central_truth;
+    }
   }
   inputs.gt_disparity = truth.disparity;
   inputs.segmentation_disparity = disparity;

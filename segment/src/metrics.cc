@@ -58,7 +58,7 @@ struct Overlaps {
 // pixel (the evaluation of a full Illum capture spent a second there); other ids are hashed.
 constexpr std::int64_t kDensePairs = std::int64_t{1} << 20;
 
-// The range of the ids of `labels` over the pixels where gt >= 0 (min > max when there are none).
+// The ranges of the ids of `labels` and of `gt` over the pixels where gt >= 0 (min > max when there are none).
 void IdRanges(const cv::Mat& labels, const cv::Mat& gt, int& min_s, int& max_s, int& min_g, int& max_g) {
   min_s = min_g = std::numeric_limits<int>::max();
   max_s = max_g = std::numeric_limits<int>::min();
@@ -102,7 +102,7 @@ Overlaps CountOverlaps(const cv::Mat& labels, const cv::Mat& gt) {
   IdRanges(labels, gt, min_s, max_s, min_g, max_g);
   if (min_s > max_s) return {};
   const std::int64_t superpixels = std::int64_t{max_s} - min_s + 1, regions = std::int64_t{max_g} - min_g + 1;
-  if (superpixels * regions > kDensePairs) return CountOverlapsHashed(labels, gt);
+  if (superpixels > kDensePairs / regions) return CountOverlapsHashed(labels, gt);
   std::vector<long long> joint(static_cast<std::size_t>(superpixels * regions), 0);
   for (int y = 0; y < labels.rows; ++y) {
     const int* s = labels.ptr<int>(y);

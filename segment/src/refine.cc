@@ -165,6 +165,10 @@ class Refiner {
   // round(d) per view step, and the error adds up towards the edge views). Its 3x3 mixed ring is taken around the
   // nearest pixel.
   double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, double limit) {
+    // A shift beyond the view's size puts every angular neighbour outside it; clamping there keeps a hostile
+    // disparity map's planes (1e30, NaN) from overflowing the integer positions below.
+    const double max_shift = width_ + height_;
+    if (!(std::abs(d) <= max_shift)) d = std::isnan(d) ? 0.0 : std::copysign(max_shift, d);
     const int rounded = static_cast<int>(std::lround(d));
     const int reach = std::abs(rounded) + 1;  // the 3x3 blocks of the neighbouring views must lie inside the view
     if (x >= reach && y >= reach && x + reach + 1 < width_ && y + reach < height_) {

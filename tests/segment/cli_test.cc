@@ -77,7 +77,7 @@ TEST(SegmentCli, SegmentsAndEvaluatesASimulatedScene) {
 
 // Segment keeps a decode's well-lit central views; the ground truth of a simulated capture covers all of them. The
 // report scores the labels against the truth's central views (it used to stop with "differ in shape").
-TEST(SegmentCli, ScoresLabelsOfTheCentralViewsAgainstTheWholeGroundTruth) {
+TEST(SegmentCli, ScoresLabelsOfTheCentralViewsAgainstTheTruthsCentralViews) {
   TempDir dir;
   simulate::RenderOptions options;
   options.nu = options.nv = 5;
