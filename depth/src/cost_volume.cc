@@ -243,7 +243,7 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     std::vector<float> totals(static_cast<std::size_t>(labels) * tile_size);
     std::vector<float> halves(occlusion ? totals.size() : 0);
     std::vector<float> in_half_a(occlusion ? static_cast<std::size_t>(kSectors) * tile_size : 0);
-    // The same for the views along each pixel's edge (sectors at both ends of its split line).
+    // The same for the views along each pixel's edge (the pair of opposite sectors nearest its direction).
     const bool along_edge = occlusion && options.along_edge_penalty > 0.0f;
     std::vector<float> alongs(along_edge ? totals.size() : 0);
     std::vector<float> in_along(along_edge ? static_cast<std::size_t>(kSectors) * tile_size : 0);
