@@ -414,8 +414,7 @@ Labels FollowToCentre(const Labels& labels, const std::vector<DisparityMap>& vie
         const int x0 = RoundHalfAway(x + (view.u - c.u) * disparity);
         const int y0 = RoundHalfAway(y + (view.v - c.v) * disparity);
         if (x0 < 0 || y0 < 0 || x0 >= w || y0 >= h) continue;
-        ++votes[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(l[y * w + x])) << 32) |
-                static_cast<std::uint32_t>(centre[y0 * w + x0])];
+        ++votes[PairKey(l[y * w + x], centre[y0 * w + x0])];
       }
     }
     std::unordered_map<int, std::pair<int, int>> best;  // view label -> (centre label, votes)

@@ -126,11 +126,17 @@ class Refiner {
   int RoundedDisparity(int k, int x, int y, int du, int dv) const {
     return static_cast<int>(std::lround(RayDisparity(k, x, y, du, dv)));
   }
+  // A shift beyond the view's size puts every angular neighbour outside it, so the disparity is clamped there: a
+  // hostile disparity map's planes (1e30, NaN) would otherwise overflow the integer positions the boundary term and
+  // Wake compute from it.
   double RayDisparity(int k, int x, int y, int du, int dv) const {
     const Plane& plane = planes_[static_cast<std::size_t>(k)];
     const double denominator = 1.0 - plane.a * du - plane.b * dv;
     const double numerator = plane.a * x + plane.b * y + plane.c;
-    return std::abs(denominator) > 0.1 ? numerator / denominator : numerator;
+    const double d = std::abs(denominator) > 0.1 ? numerator / denominator : numerator;
+    const double max_shift = width_ + height_;
+    if (std::abs(d) <= max_shift) return d;
+    return std::isnan(d) ? 0.0 : std::copysign(max_shift, d);
   }
 
   // Would removing the ray at (x, y) split its label's slice? True if the label appears in more than one separate
@@ -165,10 +171,6 @@ class Refiner {
   // round(d) per view step, and the error adds up towards the edge views). Its 3x3 mixed ring is taken around the
   // nearest pixel.
   double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, double limit) {
-    // A shift beyond the view's size puts every angular neighbour outside it; clamping there keeps a hostile
-    // disparity map's planes (1e30, NaN) from overflowing the integer positions below.
-    const double max_shift = width_ + height_;
-    if (!(std::abs(d) <= max_shift)) d = std::isnan(d) ? 0.0 : std::copysign(max_shift, d);
     const int rounded = static_cast<int>(std::lround(d));
     const int reach = std::abs(rounded) + 1;  // the 3x3 blocks of the neighbouring views must lie inside the view
     if (x >= reach && y >= reach && x + reach + 1 < width_ && y + reach < height_) {

@@ -59,12 +59,24 @@ TEST_F(ShiftSceneTest, RegularisationBeatsWinnerTakeAll) {
   EXPECT_LT(full.all.badpix_007, wta.all.badpix_007);
 }
 
-TEST(SimulatedScene, OccludersSceneWithinBound) {
+// A built-in scene rendered with views x views views of size x size, as a bundle (metadata with its disparity
+// range, as depth reads it) beside the rendered truth.
+struct RenderedScene {
+  simulate::RenderedLightField rendered;
+  Bundle bundle;
+};
+RenderedScene Render(const char* name, int views, int size) {
   simulate::RenderOptions render;
-  render.width = render.height = 128;
-  const simulate::Scene scene = simulate::BuiltinScene("occluders");
-  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, render);
-  const Bundle bundle = simulate::ToBundle(rendered, scene);
+  render.nu = render.nv = views;
+  render.width = render.height = size;
+  const simulate::Scene scene = simulate::BuiltinScene(name);
+  RenderedScene out{simulate::RenderLightField(scene, render), {}};
+  out.bundle = simulate::ToBundle(out.rendered, scene);
+  return out;
+}
+
+TEST(SimulatedScene, OccludersSceneWithinBound) {
+  const auto [rendered, bundle] = Render("occluders", 9, 128);
   const DepthResult result = EstimateDepth(bundle.light_field, {});
   const DepthEvaluation e = EvaluateDisparity(result.disparity, rendered.disparity, SmallImageMetrics());
   // Measured BadPix 0.07 9.0 %, MSE x100 4.1 on 9x9x128x128.
@@ -76,12 +88,7 @@ TEST(SimulatedScene, OccludersSceneWithinBound) {
 // between the centre and an outer view; matched on all views there, the occluder's edge, carried along with it,
 // wins and the occluder grows. The automatic radius covers that band; half of it (the old rule) did not.
 TEST(SimulatedScene, BackgroundBesideAnOccluderIsNotTakenByIt) {
-  simulate::RenderOptions render;
-  render.nu = render.nv = 7;
-  render.width = render.height = 256;
-  const simulate::Scene scene = simulate::BuiltinScene("two-horses");
-  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, render);
-  const Bundle bundle = simulate::ToBundle(rendered, scene);
+  const auto [rendered, bundle] = Render("two-horses", 7, 256);
   const DepthResult automatic = EstimateDepth(bundle.light_field, {});
   DepthOptions half_band;
   half_band.occlusion.radius = 0.5 * AutomaticOcclusionRadius(7, 7, automatic.range.min, automatic.range.max);
@@ -97,11 +104,7 @@ TEST(SimulatedScene, BackgroundBesideAnOccluderIsNotTakenByIt) {
 // A pixel in a 1-4 px gap between two teeth of the comb is hidden in the views on both sides of the half-patch
 // split; only the views along the teeth see it. Without them the gaps read as the teeth.
 TEST(SimulatedScene, GapsBetweenCombTeethReadAsTheBackground) {
-  simulate::RenderOptions render;
-  render.width = render.height = 512;  // the comb is laid out for 512 x 512 views
-  const simulate::Scene scene = simulate::BuiltinScene("comb");
-  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, render);
-  const Bundle bundle = simulate::ToBundle(rendered, scene);
+  const auto [rendered, bundle] = Render("comb", 9, 512);  // the comb is laid out for 512 x 512 views
   const DepthResult along = EstimateDepth(bundle.light_field, {});
   DepthOptions halves_only;
   halves_only.cost.along_edge_penalty = 0.0f;

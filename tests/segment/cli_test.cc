@@ -16,14 +16,20 @@ namespace {
 using lfsp::testing::RunLfsp;
 using lfsp::testing::TempDir;
 
+// Renders a built-in scene with nu x nu views of size x size and writes it, with its truth, as `path` (.h5).
+simulate::RenderedLightField WriteScene(const char* name, int views, int size, const std::filesystem::path& path) {
+  simulate::RenderOptions options;
+  options.nu = options.nv = views;
+  options.width = options.height = size;
+  const simulate::Scene scene = simulate::BuiltinScene(name);
+  simulate::RenderedLightField rendered = simulate::RenderLightField(scene, options);
+  WriteBundle(simulate::ToBundle(rendered, scene), path);
+  return rendered;
+}
+
 TEST(SegmentCli, SegmentsAndEvaluatesASimulatedScene) {
   TempDir dir;
-  simulate::RenderOptions options;
-  options.nu = options.nv = 5;
-  options.width = options.height = 64;
-  const simulate::Scene scene = simulate::BuiltinScene("two-horses");
-  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, options);
-  WriteBundle(simulate::ToBundle(rendered, scene), dir / "scene.h5");
+  const simulate::RenderedLightField rendered = WriteScene("two-horses", 5, 64, dir / "scene.h5");
   WritePfm(rendered.disparity, dir / "gt.pfm");
 
   const auto segment =
@@ -79,12 +85,7 @@ TEST(SegmentCli, SegmentsAndEvaluatesASimulatedScene) {
 // report scores the labels against the truth's central views (it used to stop with "differ in shape").
 TEST(SegmentCli, ScoresLabelsOfTheCentralViewsAgainstTheTruthsCentralViews) {
   TempDir dir;
-  simulate::RenderOptions options;
-  options.nu = options.nv = 5;
-  options.width = options.height = 48;
-  const simulate::Scene scene = simulate::BuiltinScene("two-horses");
-  const simulate::RenderedLightField rendered = simulate::RenderLightField(scene, options);
-  WriteBundle(simulate::ToBundle(rendered, scene), dir / "scene.h5");
+  WriteScene("two-horses", 5, 48, dir / "scene.h5");
 
   const auto segment = RunLfsp(
       {"segment", (dir / "scene.h5").string(), "--views", "3", "--size", "12", "--out", (dir / "out.h5").string()});
