@@ -1,13 +1,29 @@
 // A white image estimated from the capture itself, for raws that come without one.
 //
 // Every micro-image is the same vignetting profile (the image of the main-lens exit pupil through one micro-lens)
-// times the scene it sees. Dividing each micro-image by its own core brightness, per Bayer phase (so the scene's
+// times the scene it sees. Dividing each micro-image by its own brightness, per Bayer phase (so the scene's
 // brightness and colour go), and averaging over thousands of lenses by offset from the lens centre leaves the
 // profile: the scene inside the micro-images differs from lens to lens and averages out, and lens centres fall at
-// every sub-pixel phase, so the offsets are sampled finely. The profile is estimated per tile of the sensor (its
-// shape changes towards the corners of real cameras, where the main lens clips the micro-images) and blended
-// between tile centres. What a single capture cannot show is the smooth main-lens falloff across the sensor (it is
-// indistinguishable from the scene's own brightness): the estimate leaves it in the light field.
+// every sub-pixel phase, so the offsets are sampled finely. What a single capture cannot show is the smooth
+// main-lens falloff across the sensor (it is indistinguishable from the scene's own brightness): the estimate leaves
+// it in the light field.
+//
+// The estimate must be right to a few parts in a thousand from one offset to the next, not only on average: its
+// error repeats in every micro-image, so each view inherits it as a pattern tied to the lens lattice, the same in
+// every view, and a view-invariant pattern reads as texture at disparity 0. On the full-size F01 two-horses capture
+// without noise, the first version of this estimate (0.25 px bins, each lens divided by its plain core mean) put
+// the background's disparity 0.17 px off and depth's BadPix 0.07 at 80 % (3.2 % with the true white image). Two
+// things made it so, each measured against the simulator's own white image:
+// - The brightness a lens is divided by. A plain mean over the core mixes offsets that depend on where the lens
+//   centre falls between pixels, so lenses at one sub-pixel phase were divided by a dimmer mean than others. As
+//   every offset bin is filled by lenses of one phase, that came back as a +-3 % ripple with a period of one and two
+//   pixels in the profile. A first pass estimates the profile; the second divides each lens by its least-squares
+//   fit to that profile, smoothed well beyond a pixel so that the ripple cannot feed itself back.
+// - Blur. 0.25 px bins smoothed by 0.25 px rounded the micro-image's steep edge: 7 % too bright at 4.5-5 px from
+//   the centre, 35 % at 5-5.5 px. The whole sensor's lenses now fill 0.1 px bins smoothed by 0.05 px, and each tile
+//   of the sensor (the micro-image changes shape towards the corners of real cameras) only scales that profile by
+//   a smooth low-order surface fitted to its own coarse profile: a full profile per tile was noise at this
+//   resolution.
 
 #include <omp.h>
 
@@ -25,15 +41,19 @@
 namespace lfsp::decode {
 namespace {
 
-constexpr double kBinPixels = 0.25;  // profile bin size
-// Smoothing of the binned profile (Gaussian sigma, px): enough to fill sparsely sampled bins, little enough to keep
-// the micro-image's soft edge. Measured (inner views against the truth, with the white image 28.43 dB on crop F01 and
-// 28.70 dB on crop Illum): 0.5 px gives 27.18 / 28.19 dB, 0.25 px 28.44 / 28.14 dB, 0.15 px 28.69 / 28.10 dB.
-constexpr double kProfileSmoothPixels = 0.25;
-constexpr double kCoreFraction = 0.3;    // core radius (normalising brightness) as a fraction of the spacing
+constexpr double kBinPixels = 0.1;  // profile bin size
+// Smoothing of the whole sensor's binned profile (Gaussian sigma, px): little enough to keep the micro-image's soft
+// edge (the sensor's ~10^5 lenses put about a thousand samples in every bin).
+constexpr double kProfileSmoothPixels = 0.05;
+// Smoothing of a tile's profile and of the whole sensor's before their ratio is fitted (px).
+constexpr double kTileSmoothPixels = 0.5;
+// Smoothing of the first pass's profile when each lens is fitted to it (px): removes any ripple with a period of
+// one or two pixels (its amplitude falls by exp(-2 pi^2 sigma^2 / period^2) < 1e-9) and, inside the core, only
+// scales the profile's paraboloid.
+constexpr double kGainProfileSmoothPixels = 3.0;
+constexpr double kCoreFraction = 0.3;    // core radius (fitted brightness) as a fraction of the spacing
 constexpr double kReachFraction = 0.62;  // profile radius: beyond the hexagonal cell's corner (spacing / sqrt(3))
 constexpr float kSaturated = 0.98f;      // levelled value from which a pixel counts as clipped
-constexpr double kDimCore = 0.05;        // cores dimmer than this (levelled) count in proportion to brightness
 constexpr double kWhiteLevel = 0.6;      // the synthetic white's core level, as a fraction of the raw range
 
 // The sensor's response per Bayer phase relative to green: normalizedResponses when the metadata has them, else
@@ -51,7 +71,8 @@ std::array<double, 4> PhaseResponse(const LytroMetadata& metadata, BayerPattern 
   return response;
 }
 
-// Sums of normalised micro-image values by offset bin, per tile.
+// Per offset bin and tile: the sum of pixel values and the sum of the brightness of the lenses they came from
+// (their ratio is the profile).
 struct ProfileAccumulator {
   int bins = 0;   // per axis
   int tiles = 0;  // per axis
@@ -71,14 +92,26 @@ struct ProfileAccumulator {
   }
 };
 
-// Adds one lens's micro-image; false (nothing added) when it is clipped, off the sensor or has an empty phase.
+float Bilinear(const cv::Mat& profile, double fx, double fy) {
+  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= profile.cols || y0 + 1 >= profile.rows) return 0.0f;
+  const auto ax = static_cast<float>(fx - x0), ay = static_cast<float>(fy - y0);
+  const float* r0 = profile.ptr<float>(y0);
+  const float* r1 = profile.ptr<float>(y0 + 1);
+  return (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) + ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
+}
+
+// Adds one lens's micro-image; false (nothing added) when it is clipped, off the sensor or has an empty phase. The
+// lens's brightness per Bayer phase is its core's least-squares scale of `first_pass` (a profile on the
+// accumulator's bins), or the core's plain mean without one.
 bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double core, int tile,
-             ProfileAccumulator& accumulator) {
+             const cv::Mat* first_pass, ProfileAccumulator& accumulator) {
   const int x0 = static_cast<int>(std::floor(cx - reach)), x1 = static_cast<int>(std::ceil(cx + reach));
   const int y0 = static_cast<int>(std::floor(cy - reach)), y1 = static_cast<int>(std::ceil(cy + reach));
   if (x0 < 0 || y0 < 0 || x1 >= levelled.cols || y1 >= levelled.rows) return false;
+  const double half = 0.5 * (accumulator.bins - 1);
   std::array<double, 4> core_sum{};
-  std::array<int, 4> core_count{};
+  std::array<double, 4> core_norm{};
   for (int y = y0; y <= y1; ++y) {
     const float* row = levelled.ptr<float>(y);
     for (int x = x0; x <= x1; ++x) {
@@ -86,20 +119,18 @@ bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double
       if (r2 > reach * reach) continue;
       if (row[x] >= kSaturated) return false;
       if (r2 <= core * core) {
-        core_sum[static_cast<std::size_t>(BayerPhase(x, y))] += row[x];
-        ++core_count[static_cast<std::size_t>(BayerPhase(x, y))];
+        const double v =
+            first_pass ? Bilinear(*first_pass, (x - cx) / kBinPixels + half, (y - cy) / kBinPixels + half) : 1.0;
+        core_sum[static_cast<std::size_t>(BayerPhase(x, y))] += row[x] * v;
+        core_norm[static_cast<std::size_t>(BayerPhase(x, y))] += v * v;
       }
     }
   }
-  std::array<double, 4> inverse_core{};
-  double lens_weight = 1.0;
+  std::array<double, 4> brightness{};
   for (std::size_t phase = 0; phase < 4; ++phase) {
-    if (core_count[phase] < 1 || !(core_sum[phase] > 0.0)) return false;
-    const double mean = core_sum[phase] / core_count[phase];
-    inverse_core[phase] = 1.0 / mean;
-    lens_weight = std::min(lens_weight, mean / kDimCore);  // dim lenses are noisy: they count less
+    if (!(core_norm[phase] > 0.0) || !(core_sum[phase] > 0.0)) return false;
+    brightness[phase] = core_sum[phase] / core_norm[phase];
   }
-  const double half = 0.5 * (accumulator.bins - 1);
   for (int y = y0; y <= y1; ++y) {
     const float* row = levelled.ptr<float>(y);
     for (int x = x0; x <= x1; ++x) {
@@ -108,61 +139,109 @@ bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double
       const int bx = static_cast<int>(std::lround(dx / kBinPixels + half));
       const int by = static_cast<int>(std::lround(dy / kBinPixels + half));
       if (bx < 0 || by < 0 || bx >= accumulator.bins || by >= accumulator.bins) continue;
-      const double q = std::min(4.0, row[x] * inverse_core[static_cast<std::size_t>(BayerPhase(x, y))]);
       const std::size_t n = accumulator.Index(tile, by, bx);
-      accumulator.sum[n] += lens_weight * q;
-      accumulator.weight[n] += lens_weight;
+      // Sums, not a mean of ratios: a dim lens beside a bright one (whose light reaches the cell's edge) would
+      // otherwise weigh as much as any other.
+      accumulator.sum[n] += row[x];
+      accumulator.weight[n] += brightness[static_cast<std::size_t>(BayerPhase(x, y))];
     }
   }
   return true;
 }
 
-// One tile's profile: normalised convolution (Gaussian, kProfileSmoothPixels) of its sums, so sparsely sampled bins
-// borrow from their neighbours; tiles with too few lenses take the whole sensor's profile.
+cv::Mat BinsToMat(const double* data, int bins) {
+  cv::Mat m(bins, bins, CV_64F);
+  std::copy(data, data + static_cast<std::size_t>(bins) * static_cast<std::size_t>(bins), m.ptr<double>());
+  return m;
+}
+
+cv::Mat Blur(const cv::Mat& m, double sigma_pixels) {
+  cv::Mat out;
+  cv::GaussianBlur(m, out, cv::Size(0, 0), sigma_pixels / kBinPixels, 0.0, cv::BORDER_CONSTANT);
+  return out;
+}
+
+// Normalised convolution: the profile from its smoothed sums (0 where no lens reached).
+cv::Mat SmoothedProfile(const cv::Mat& sum, const cv::Mat& weight, double sigma_pixels) {
+  const cv::Mat s = Blur(sum, sigma_pixels), w = Blur(weight, sigma_pixels);
+  cv::Mat profile(sum.size(), CV_64F);
+  for (int y = 0; y < sum.rows; ++y)
+    for (int x = 0; x < sum.cols; ++x)
+      profile.at<double>(y, x) = w.at<double>(y, x) > 1e-9 ? s.at<double>(y, x) / w.at<double>(y, x) : 0.0;
+  return profile;
+}
+
+// The low-order surface c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 x y (x, y: offset in px) that a tile's profile
+// is of the whole sensor's, fitted (weighted by the tile's samples) where the micro-image is lit: the level, tilt
+// and elongation by which real micro-images change towards the sensor's corners, in six numbers that thousands of
+// lenses pin down (a tile's own profile at 0.1 px bins would be noise).
+using TileCorrection = cv::Vec<double, 6>;
+TileCorrection FitTileCorrection(const cv::Mat& tile_sum, const cv::Mat& tile_weight, const cv::Mat& whole_coarse) {
+  const cv::Mat tile = SmoothedProfile(tile_sum, tile_weight, kTileSmoothPixels);
+  const cv::Mat weight = Blur(tile_weight, kTileSmoothPixels);
+  double peak = 0.0;
+  cv::minMaxLoc(whole_coarse, nullptr, &peak);
+  const double centre = 0.5 * (tile.cols - 1);
+  cv::Matx<double, 6, 6> normal = cv::Matx<double, 6, 6>::zeros();
+  TileCorrection right = TileCorrection::all(0.0);
+  for (int y = 0; y < tile.rows; ++y)
+    for (int x = 0; x < tile.cols; ++x) {
+      const double whole = whole_coarse.at<double>(y, x), w = weight.at<double>(y, x);
+      if (whole < 0.2 * peak || !(w > 0.0)) continue;
+      const double ox = (x - centre) * kBinPixels, oy = (y - centre) * kBinPixels;
+      const TileCorrection basis(1.0, ox, oy, ox * ox, oy * oy, ox * oy);
+      right += w * (tile.at<double>(y, x) / whole) * basis;
+      normal += w * basis * basis.t();
+    }
+  TileCorrection solution;
+  if (!cv::solve(normal, right, solution, cv::DECOMP_CHOLESKY)) return TileCorrection(1.0, 0, 0, 0, 0, 0);
+  return solution;
+}
+
+// Every tile's profile: the whole sensor's (normalised convolution of all tiles' sums, kProfileSmoothPixels) times
+// the tile's low-order correction; tiles with too few lenses take the whole sensor's profile as it is.
 std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator) {
   const int bins = accumulator.bins, tiles = accumulator.tiles;
-  auto smooth = [bins](const double* data) {
-    cv::Mat m(bins, bins, CV_64F);
-    std::copy(data, data + static_cast<std::size_t>(bins * bins), m.ptr<double>());
-    cv::GaussianBlur(m, m, cv::Size(0, 0), kProfileSmoothPixels / kBinPixels, 0.0, cv::BORDER_CONSTANT);
-    return m;
-  };
-  cv::Mat global_sum = cv::Mat::zeros(bins, bins, CV_64F), global_weight = cv::Mat::zeros(bins, bins, CV_64F);
+  cv::Mat whole_sum = cv::Mat::zeros(bins, bins, CV_64F), whole_weight = cv::Mat::zeros(bins, bins, CV_64F);
   std::vector<cv::Mat> sums, weights;
   for (int t = 0; t < tiles * tiles; ++t) {
-    sums.push_back(smooth(&accumulator.sum[accumulator.Index(t, 0, 0)]));
-    weights.push_back(smooth(&accumulator.weight[accumulator.Index(t, 0, 0)]));
-    global_sum += sums.back();
-    global_weight += weights.back();
+    sums.push_back(BinsToMat(&accumulator.sum[accumulator.Index(t, 0, 0)], bins));
+    weights.push_back(BinsToMat(&accumulator.weight[accumulator.Index(t, 0, 0)], bins));
+    whole_sum += sums.back();
+    whole_weight += weights.back();
   }
+  const cv::Mat fine = SmoothedProfile(whole_sum, whole_weight, kProfileSmoothPixels);
+  const cv::Mat whole_coarse = SmoothedProfile(whole_sum, whole_weight, kTileSmoothPixels);
   const double median_weight = [&] {
     std::vector<double> totals;
     for (const cv::Mat& w : weights) totals.push_back(cv::sum(w)[0]);
     std::nth_element(totals.begin(), totals.begin() + static_cast<std::ptrdiff_t>(totals.size() / 2), totals.end());
     return totals[totals.size() / 2];
   }();
+  const double centre = 0.5 * (bins - 1);
   std::vector<cv::Mat> profiles;
   for (int t = 0; t < tiles * tiles; ++t) {
-    const bool sparse = cv::sum(weights[static_cast<std::size_t>(t)])[0] < 0.25 * median_weight;
-    const cv::Mat& s = sparse ? global_sum : sums[static_cast<std::size_t>(t)];
-    const cv::Mat& w = sparse ? global_weight : weights[static_cast<std::size_t>(t)];
+    const auto k = static_cast<std::size_t>(t);
+    const bool sparse = cv::sum(weights[k])[0] < 0.25 * median_weight;
+    const TileCorrection c =
+        sparse ? TileCorrection(1.0, 0, 0, 0, 0, 0) : FitTileCorrection(sums[k], weights[k], whole_coarse);
     cv::Mat profile(bins, bins, CV_32F);
     for (int y = 0; y < bins; ++y)
-      for (int x = 0; x < bins; ++x)
-        profile.at<float>(y, x) =
-            w.at<double>(y, x) > 1e-9 ? static_cast<float>(s.at<double>(y, x) / w.at<double>(y, x)) : 0.0f;
+      for (int x = 0; x < bins; ++x) {
+        const double ox = (x - centre) * kBinPixels, oy = (y - centre) * kBinPixels;
+        const double scale = c[0] + c[1] * ox + c[2] * oy + c[3] * ox * ox + c[4] * oy * oy + c[5] * ox * oy;
+        profile.at<float>(y, x) = static_cast<float>(fine.at<double>(y, x) * scale);
+      }
     profiles.push_back(profile);
   }
   return profiles;
 }
 
-float Bilinear(const cv::Mat& profile, double fx, double fy) {
-  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
-  if (x0 < 0 || y0 < 0 || x0 + 1 >= profile.cols || y0 + 1 >= profile.rows) return 0.0f;
-  const auto ax = static_cast<float>(fx - x0), ay = static_cast<float>(fy - y0);
-  const float* r0 = profile.ptr<float>(y0);
-  const float* r1 = profile.ptr<float>(y0 + 1);
-  return (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) + ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
+// The first pass's profiles smoothed for fitting each lens's brightness to them (kGainProfileSmoothPixels).
+std::vector<cv::Mat> GainProfiles(std::vector<cv::Mat> profiles) {
+  for (cv::Mat& p : profiles)
+    cv::GaussianBlur(p, p, cv::Size(0, 0), kGainProfileSmoothPixels / kBinPixels, 0.0, cv::BORDER_REPLICATE);
+  return profiles;
 }
 
 }  // namespace
@@ -179,41 +258,48 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
   const int bins = 2 * static_cast<int>(std::ceil(reach / kBinPixels)) + 3;
   const long lenses = static_cast<long>(grid.columns) * grid.rows;
   // Tiles of at least ~2000 lenses each (5 x 5 on full Lytro sensors). Real micro-images change shape across the
-  // sensor: on the real F01 frame IMG_1 the outer views' brightness relative to the centre view varies across the
-  // image by a factor 1.20-1.22 (p95/p5) with one profile, 1.12-1.15 with 5 x 5 tiles. (The simulator's profile is
-  // the same everywhere, so there one tile would do slightly better.)
+  // sensor: on the real F01 frame IMG_1 the outer views' brightness relative to the centre view varied across the
+  // image by a factor 1.20-1.22 (p95/p5) with one profile, 1.12-1.15 with 5 x 5 tiles of full profiles. (The
+  // simulator's profile is the same everywhere: there each tile's correction is noise, and one tile read 13 %
+  // BadPix 0.07 on the noisy F01 two-horses capture where 5 x 5 corrected tiles read 20 %.)
   const int tiles = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(lenses) / 2000.0)), 1, 5);
 
   // 1. Accumulate every usable lens, rows of lenses in parallel, summed in a fixed order (the same white image, to
-  // the bit, on every run and thread count).
+  // the bit, on every run and thread count). Twice: the second pass normalises each lens by the first pass's profile.
   struct Partial {
     ProfileAccumulator profile;
     long used = 0;
   };
-  const Partial total_partial = OrderedParallelSum(
-      grid.rows,
-      [&] {
-        return Partial{ProfileAccumulator(bins, tiles), 0};
-      },
-      [&](int j, Partial& partial) {
-        for (int i = 0; i < grid.columns; ++i) {
-          double cx = 0.0, cy = 0.0;
-          grid.Centre(i, j, cx, cy);
-          const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
-          const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
-          if (AddLens(levelled, cx, cy, reach, core, ty * tiles + tx, partial.profile)) ++partial.used;
-        }
-      },
-      [](Partial& into, const Partial& from) {
-        into.profile.Merge(from.profile);
-        into.used += from.used;
-      });
-  const ProfileAccumulator& total = total_partial.profile;
-  const long used = total_partial.used;
+  auto accumulate = [&](const std::vector<cv::Mat>* first_pass) {
+    return OrderedParallelSum(
+        grid.rows,
+        [&] {
+          return Partial{ProfileAccumulator(bins, tiles), 0};
+        },
+        [&](int j, Partial& partial) {
+          for (int i = 0; i < grid.columns; ++i) {
+            double cx = 0.0, cy = 0.0;
+            grid.Centre(i, j, cx, cy);
+            const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
+            const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
+            const int tile = ty * tiles + tx;
+            const cv::Mat* profile = first_pass ? &(*first_pass)[static_cast<std::size_t>(tile)] : nullptr;
+            if (AddLens(levelled, cx, cy, reach, core, tile, profile, partial.profile)) ++partial.used;
+          }
+        },
+        [](Partial& into, const Partial& from) {
+          into.profile.Merge(from.profile);
+          into.used += from.used;
+        });
+  };
+  const Partial first = accumulate(nullptr);
+  const long used = first.used;
   if (used < 50)
     throw Error(metadata.source + ": too few unclipped, lit micro-images (" + std::to_string(used) +
                 ") to estimate the white image from the capture");
-  const std::vector<cv::Mat> profiles = TileProfiles(total);
+  const std::vector<cv::Mat> first_profiles = TileProfiles(first.profile);
+  const std::vector<cv::Mat> gain_profiles = GainProfiles(first_profiles);
+  const std::vector<cv::Mat> profiles = TileProfiles(accumulate(&gain_profiles).profile);
 
   // 2. Synthesise: each pixel takes the profile at its offset from the nearest lens, blended between tile centres.
   const std::array<double, 4> response = PhaseResponse(metadata, format.mosaic);
