@@ -4,7 +4,8 @@
 // noise. Asserts, per capture:
 //  - geometry: every well-lit view (mean weight > 0.6) of the decoded capture registers against the ideal view of
 //    the same (u, v) to 0.05 px;
-//  - depth: on the views the decoder's weights choose, each strip's mean disparity is within 0.02 px of the truth;
+//  - depth: on the views the decoder's weights choose, each strip's mean disparity is within 0.02 px of the truth
+//    (0.075 px when the noisy capture is decoded without its white image);
 //  - colour: in camera colour, the centre view's mean per channel (taken back to linear, over the truth) agree to
 //    5 %, and under 1 % of its samples are clipped at black.
 // These failed before the fixes they test: outer views were displaced by up to 0.28 px (the demosaic reached the
@@ -69,9 +70,10 @@ Capture Simulate(const fs::path& root, const fs::path& scene, const std::string&
   return {folder, folder / (camera == "illum" ? "capture.LFR" : "capture.lfp")};
 }
 
-LightField Decode(const Capture& capture, decode::ColourMode colour) {
+LightField Decode(const Capture& capture, decode::ColourMode colour, bool white_image = true) {
   decode::CaptureDecodeOptions options;
   options.decode.colour = colour;
+  options.no_white_image = !white_image;
   return decode::DecodeCaptureFile(capture.file, options).light_field;
 }
 
@@ -88,7 +90,7 @@ void CheckRegistration(const LightField& decoded, const LightField& truth, const
   EXPECT_GT(registration.registered, 20) << what;
 }
 
-void CheckStripDisparities(LightField decoded, const std::string& what) {
+void CheckStripDisparities(LightField decoded, const std::string& what, double tolerance = 0.02) {
   std::optional<Labels> no_labels;
   const ViewChoice views = ChooseViews(decoded);
   KeepCentralViews(decoded, no_labels, views.n);
@@ -105,7 +107,7 @@ void CheckStripDisparities(LightField decoded, const std::string& what) {
       for (int x = x0; x < x1; ++x, ++count) sum += result.disparity.at(y, x);
     const double mean = sum / static_cast<double>(count);
     std::printf("%s (%s): strip d = %+.1f reads %+.4f\n", what.c_str(), views.reason.c_str(), kStripDisparity[k], mean);
-    EXPECT_NEAR(mean, kStripDisparity[k], 0.02) << what << " strip " << k;
+    EXPECT_NEAR(mean, kStripDisparity[k], tolerance) << what << " strip " << k;
   }
 }
 
@@ -144,6 +146,10 @@ void CheckCamera(const std::string& camera) {
     const LightField linear = Decode(capture, decode::ColourMode::kLinear);
     if (!noise) CheckRegistration(linear, truth, what);
     CheckStripDisparities(linear, what);
+    // Without a white image (issue 13): measured at most 0.048 px off (Illum) and 0.059 px (F01), worst at
+    // half-integer disparities; the decode with the white image reads within 0.02.
+    if (noise)
+      CheckStripDisparities(Decode(capture, decode::ColourMode::kLinear, false), what + ", no white image", 0.075);
     CheckCameraColour(Decode(capture, decode::ColourMode::kCamera), truth, what);
     fs::remove_all(capture.folder);
   }
