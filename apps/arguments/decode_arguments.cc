@@ -21,6 +21,10 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
   command->add_flag("--no-hot-pixels", arguments.no_hot_pixels, "Skip hot-pixel correction (default: corrected)");
   command->add_option("--dehex", arguments.dehex,
                       "Row-alternation softening against hexagonal artefacts, 0..0.25 (default: 0.1)");
+  command->add_flag("--no-lattice-flattening", arguments.no_lattice_flattening,
+                    "Keep the gain the lens lattice leaves in each view (a devignetting error tied to where each lens "
+                    "centre falls on the Bayer tile, the same in every view); default: measured and divided out, "
+                    "its size in the summary's decode.lattice_gain");
 }
 
 void AddGridFileOption(CLI::App* command, std::string& grid_file) {
@@ -43,6 +47,7 @@ decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& argum
   options.decode.correct_hot_pixels = !arguments.no_hot_pixels;
   if (!(arguments.dehex >= 0.0 && arguments.dehex <= 0.25)) throw Error(OptionName("dehex") + " must be in [0, 0.25]");
   options.decode.dehex = arguments.dehex;
+  options.decode.flatten_lattice = !arguments.no_lattice_flattening;
   return options;
 }
 
@@ -51,7 +56,8 @@ nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
           {"demosaic", arguments.demosaic},
           {"colour", arguments.colour},
           {"hot_pixels", !arguments.no_hot_pixels},
-          {"dehex", arguments.dehex}};
+          {"dehex", arguments.dehex},
+          {"lattice_flattening", !arguments.no_lattice_flattening}};
 }
 
 }  // namespace lfsp::cli

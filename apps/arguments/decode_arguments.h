@@ -19,6 +19,7 @@ struct DecodeArguments {
   std::string colour = "camera";
   bool no_hot_pixels = false;
   double dehex = 0.1;
+  bool no_lattice_flattening = false;
   PlainRawArguments plain;
 };
 

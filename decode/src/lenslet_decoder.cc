@@ -11,6 +11,7 @@
 #include "lenslet_slicing.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/stopwatch.h"
+#include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lattice_pattern.h"
 
 namespace lfsp::decode {
@@ -105,6 +106,7 @@ nlohmann::json DecodeReport::ToJson() const {
           {"hot_pixels_corrected", hot_pixels_corrected},
           {"output_scale", output_scale},
           {"row_alternation", row_alternation},
+          {"lattice_gain", {{"rms", lattice_gain_rms}, {"max", lattice_gain_max}}},
           {"seconds", seconds},
           {"cpu_seconds", cpu_seconds}};
 }
@@ -204,18 +206,30 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   lap("allocate_wait");
   SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
   lap("slice");
+  if (options.flatten_lattice) {
+    const LatticeGainReport lattice_gain = FlattenLatticeGain(light_field, grid);
+    out_report.lattice_gain_rms = lattice_gain.rms;
+    out_report.lattice_gain_max = lattice_gain.max;
+    lap("flatten_lattice");
+  }
   SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
   lap("soften_encode");
   out_report.row_alternation = RowAlternationRatio(light_field);
 
-  light_field.metadata["decode"] = {
-      {"source", capture_metadata.source},       {"white_image", white.source},
-      {"demosaic", out_report.demosaic},         {"colour", out_report.colour},
-      {"output_scale", out_report.output_scale}, {"hot_pixels_corrected", out_report.hot_pixels_corrected},
-      {"view_step_pixels", geometry.view_step},  {"grid_spacing_x", grid.spacing_x},
-      {"grid_spacing_y", grid.spacing_y},        {"grid_rotation", grid.rotation},
-      {"grid_rms_residual", grid.rms_residual},  {"row_alternation", out_report.row_alternation}};
+  light_field.metadata["decode"] = {{"source", capture_metadata.source},
+                                    {"white_image", white.source},
+                                    {"demosaic", out_report.demosaic},
+                                    {"colour", out_report.colour},
+                                    {"output_scale", out_report.output_scale},
+                                    {"hot_pixels_corrected", out_report.hot_pixels_corrected},
+                                    {"view_step_pixels", geometry.view_step},
+                                    {"grid_spacing_x", grid.spacing_x},
+                                    {"grid_spacing_y", grid.spacing_y},
+                                    {"grid_rotation", grid.rotation},
+                                    {"grid_rms_residual", grid.rms_residual},
+                                    {"row_alternation", out_report.row_alternation},
+                                    {"lattice_gain_rms", out_report.lattice_gain_rms}};
   if (!capture_metadata.camera_model.empty())
     light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
   return light_field;
