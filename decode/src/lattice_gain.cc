@@ -3,7 +3,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -24,9 +26,10 @@ constexpr float kMinWeight = 0.02f;      // rays with less weight carry no usabl
 constexpr double kMinMeanWeight = 0.05;  // views darker than this on average are left alone
 constexpr double kMinLevel = 0.01;       // blurred linear level below which the ratio is noise
 
-// For every decoded pixel, the bin of the sensor position of the lens it is sampled from.
-std::vector<int> LensBins(const HexLattice& lattice, int width, int height) {
-  std::vector<int> bins(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+// For every decoded pixel, the bin of the sensor position of the lens it is sampled from (kBins^2 = 256 fit a byte).
+static_assert(kBins * kBins <= 256);
+std::vector<std::uint8_t> LensBins(const HexLattice& lattice, int width, int height) {
+  std::vector<std::uint8_t> bins(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   const double half_sqrt3 = 0.5 * std::sqrt(3.0);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -39,13 +42,13 @@ std::vector<int> LensBins(const HexLattice& lattice, int width, int height) {
         return std::clamp(static_cast<int>(phase * 0.5 * kBins), 0, kBins - 1);
       };
       bins[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-          bin(sy) * kBins + bin(sx);
+          static_cast<std::uint8_t>(bin(sy) * kBins + bin(sx));
     }
   return bins;
 }
 
 // The bins' gains measured in one view (1 where too few pixels), smoothed over the periodic bins, mean 1.
-cv::Mat MeasureGain(const cv::Mat& grey, const cv::Mat& weight, const std::vector<int>& bins) {
+cv::Mat MeasureGain(const cv::Mat& grey, const cv::Mat& weight, const std::vector<std::uint8_t>& bins) {
   cv::Mat reference;
   const int taps = 2 * static_cast<int>(std::ceil(3.0 * kReferenceSigmaRows)) + 1;
   cv::GaussianBlur(grey, reference, cv::Size(1, taps), 0.0, kReferenceSigmaRows, cv::BORDER_REFLECT);
@@ -56,7 +59,7 @@ cv::Mat MeasureGain(const cv::Mat& grey, const cv::Mat& weight, const std::vecto
     const float* g = grey.ptr<float>(y);
     const float* r = reference.ptr<float>(y);
     const float* w = weight.ptr<float>(y);
-    const int* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grey.cols);
+    const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(grey.cols);
     for (int x = margin; x < grey.cols - margin; ++x) {
       if (w[x] < kMinWeight || r[x] < kMinLevel) continue;
       const double ratio = g[x] / r[x];
@@ -66,13 +69,11 @@ cv::Mat MeasureGain(const cv::Mat& grey, const cv::Mat& weight, const std::vecto
     }
   }
   cv::Mat gain(kBins, kBins, CV_64F);
-  double total = 0.0;
   long samples = 0;
   for (int k = 0; k < kBins * kBins; ++k) {
     const auto n = static_cast<std::size_t>(k);
     const bool measured = count[n] >= kMinSamples;
     gain.at<double>(k / kBins, k % kBins) = measured ? sum[n] / count[n] : 1.0;
-    total += sum[n];
     samples += count[n];
   }
   // Smooth across the periodic bins (wrap the border), then normalise so that the view keeps its brightness.
@@ -91,7 +92,7 @@ LatticeGainReport FlattenLatticeGain(LightField& light_field, const HexLattice& 
   const LightFieldShape& shape = light_field.shape();
   LatticeGainReport report;
   if (!light_field.HasWeights() || shape.width < 32 || shape.height < 32) return report;
-  const std::vector<int> bins = LensBins(lattice, shape.width, shape.height);
+  const std::vector<std::uint8_t> bins = LensBins(lattice, shape.width, shape.height);
   const int views = shape.nu * shape.nv;
   std::vector<double> rms(static_cast<std::size_t>(views), -1.0), largest(static_cast<std::size_t>(views), 0.0);
 #pragma omp parallel for schedule(dynamic, 1)
@@ -104,18 +105,19 @@ LatticeGainReport FlattenLatticeGain(LightField& light_field, const HexLattice& 
     cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
     const cv::Mat gain = MeasureGain(grey, weight, bins);
     double squares = 0.0, worst = 0.0;
+    std::array<float, kBins * kBins> inverse{};
     for (int b = 0; b < kBins * kBins; ++b) {
-      const double deviation = gain.at<double>(b / kBins, b % kBins) - 1.0;
-      squares += deviation * deviation;
-      worst = std::max(worst, std::abs(deviation));
+      const double value = gain.at<double>(b / kBins, b % kBins);
+      squares += (value - 1.0) * (value - 1.0);
+      worst = std::max(worst, std::abs(value - 1.0));
+      inverse[static_cast<std::size_t>(b)] = static_cast<float>(1.0 / value);
     }
     rms[static_cast<std::size_t>(k)] = std::sqrt(squares / (kBins * kBins));
     largest[static_cast<std::size_t>(k)] = worst;
     for (int y = 0; y < shape.height; ++y) {
       auto* row = rgb.ptr<cv::Vec3f>(y);
-      const int* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
-      for (int x = 0; x < shape.width; ++x)
-        row[x] *= static_cast<float>(1.0 / gain.at<double>(b[x] / kBins, b[x] % kBins));
+      const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
+      for (int x = 0; x < shape.width; ++x) row[x] *= inverse[b[x]];
     }
   }
   for (int k = 0; k < views; ++k) {
