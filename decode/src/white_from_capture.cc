@@ -48,8 +48,10 @@ constexpr double kProfileSmoothPixels = 0.05;
 // Smoothing of a tile's profile and of the whole sensor's before their ratio is fitted (px).
 constexpr double kTileSmoothPixels = 0.5;
 // Smoothing of the first pass's profile when each lens is fitted to it (px): removes any ripple with a period of
-// one or two pixels (its amplitude falls by exp(-2 pi^2 sigma^2 / period^2) < 1e-9) and, inside the core, only
-// scales the profile's paraboloid.
+// one or two pixels (its amplitude falls by exp(-2 pi^2 sigma^2 / period^2) < 1e-9), so that no lens's brightness
+// depends on where its centre falls between pixels through the ripple. The smoothed profile is flatter than the true
+// one over the core; that changes every lens's fitted brightness alike (to first order), which the second pass's
+// ratio of sums absorbs.
 constexpr double kGainProfileSmoothPixels = 3.0;
 constexpr double kCoreFraction = 0.3;    // core radius (fitted brightness) as a fraction of the spacing
 constexpr double kReachFraction = 0.62;  // profile radius: beyond the hexagonal cell's corner (spacing / sqrt(3))
@@ -81,7 +83,9 @@ struct ProfileAccumulator {
   ProfileAccumulator(int bins_per_axis, int tiles_per_axis)
       : bins(bins_per_axis),
         tiles(tiles_per_axis),
-        sum(static_cast<std::size_t>(bins_per_axis * bins_per_axis * tiles_per_axis * tiles_per_axis), 0.0),
+        sum(static_cast<std::size_t>(bins_per_axis) * static_cast<std::size_t>(bins_per_axis) *
+                static_cast<std::size_t>(tiles_per_axis) * static_cast<std::size_t>(tiles_per_axis),
+            0.0),
         weight(sum.size(), 0.0) {}
   std::size_t Index(int tile, int by, int bx) const { return (static_cast<std::size_t>(tile) * bins + by) * bins + bx; }
   void Merge(const ProfileAccumulator& other) {
@@ -217,8 +221,8 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator) {
     whole_sum += sums.back();
     whole_weight += weights.back();
   }
-  const cv::Mat fine = SmoothedProfile(whole_sum, whole_weight, kProfileSmoothPixels);
   const cv::Mat whole_coarse = SmoothedProfile(whole_sum, whole_weight, kTileSmoothPixels);
+  const cv::Mat fine = SmoothedProfile(whole_sum, whole_weight, kProfileSmoothPixels);
   const double median_weight = [&] {
     std::vector<double> totals;
     for (const cv::Mat& w : weights) totals.push_back(cv::sum(w)[0]);
@@ -259,6 +263,11 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
     throw Error(metadata.source + ": capture and lenslet grid differ in size");
   const PhaseLevels levels = LevelsOf(format, metadata.source);
   const cv::Mat levelled = ApplyLevels(capture, levels);
+  // Lytro micro-images are 10-15 px across; the profile's bins grow with the square of the spacing.
+  constexpr double kLargestSpacing = 100.0;
+  if (!(grid.spacing_x > 0.0 && grid.spacing_x <= kLargestSpacing))
+    throw Error(metadata.source + ": a lens spacing of " + std::to_string(grid.spacing_x) +
+                " px is beyond what a white image can be estimated for from the capture (at most 100 px)");
   const double reach = kReachFraction * grid.spacing_x, core = kCoreFraction * grid.spacing_x;
   const int bins = 2 * static_cast<int>(std::ceil(reach / kBinPixels)) + 3;
   const long lenses = static_cast<long>(grid.columns) * grid.rows;

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 #include "lfsp/core/hex_lattice.h"
 #include "lfsp/core/light_field.h"
@@ -26,8 +28,8 @@ HexLattice F01LikeLattice() {
   return lattice;
 }
 
-// The sensor position of the lens decoded pixel (x, y) is sampled from: x * sqrt(3)/2 pitches along lens row y,
-// rounded to a lens (HexLattice's convention).
+// The sensor position of the lens nearest to where decoded pixel (x, y) is sampled: x * sqrt(3)/2 pitches along lens
+// row y (DecodedGeometry), rounded to a lens. The same rule as the decoder's, written out again here.
 void LensPosition(const HexLattice& lattice, int x, int y, double& sx, double& sy) {
   const double shift = 0.5 * lattice.Shift(y);
   lattice.SensorPosition(std::nearbyint(x * std::sqrt(3.0) / 2.0 - shift) + shift, y, 0.0, 0.0, sx, sy);
@@ -56,8 +58,9 @@ LightField Plane(const HexLattice& lattice, bool with_gain) {
         for (int x = 0; x < shape.width; ++x) {
           double sx = 0.0, sy = 0.0;
           LensPosition(lattice, x, y, sx, sy);
-          const double gain =
-              with_gain ? 1.0 + kAmplitude * std::cos(M_PI * sx) * std::cos(M_PI * sy) * (1.0 + 0.2 * (u - 2)) : 1.0;
+          const double gain = with_gain ? 1.0 + kAmplitude * std::cos(std::numbers::pi * sx) *
+                                                    std::cos(std::numbers::pi * sy) * (1.0 + 0.2 * (u - 2))
+                                        : 1.0;
           const float value = Texture(x + disparity * (u - 2), y + disparity * (v - 2));
           for (int c = 0; c < 3; ++c)
             light_field.at({u, v}, y, x, c) = static_cast<float>(value * (0.8 + 0.2 * c) * gain);
