@@ -100,13 +100,24 @@ DecodedGeometry DecodedGeometryFor(const LensletGrid& grid) {
   return geometry;
 }
 
+namespace {
+
+// The summary's and the metadata's "lattice_gain": rms and largest deviation over the views measured, or null when
+// the step did not run.
+nlohmann::json LatticeGainJson(const std::optional<LatticeGainReport>& report) {
+  if (!report) return nullptr;
+  return {{"rms", report->rms}, {"max", report->max}, {"views", report->views}};
+}
+
+}  // namespace
+
 nlohmann::json DecodeReport::ToJson() const {
   return {{"demosaic", demosaic},
           {"colour", colour},
           {"hot_pixels_corrected", hot_pixels_corrected},
           {"output_scale", output_scale},
           {"row_alternation", row_alternation},
-          {"lattice_gain", {{"rms", lattice_gain_rms}, {"max", lattice_gain_max}}},
+          {"lattice_gain", LatticeGainJson(lattice_gain)},
           {"seconds", seconds},
           {"cpu_seconds", cpu_seconds}};
 }
@@ -207,9 +218,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
   lap("slice");
   if (options.flatten_lattice) {
-    const LatticeGainReport lattice_gain = FlattenLatticeGain(light_field, grid);
-    out_report.lattice_gain_rms = lattice_gain.rms;
-    out_report.lattice_gain_max = lattice_gain.max;
+    out_report.lattice_gain = FlattenLatticeGain(light_field, grid);
     lap("flatten_lattice");
   }
   SoftenAndEncode(light_field, static_cast<float>(options.dehex), options.colour == ColourMode::kCamera);
@@ -229,7 +238,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                                     {"grid_rotation", grid.rotation},
                                     {"grid_rms_residual", grid.rms_residual},
                                     {"row_alternation", out_report.row_alternation},
-                                    {"lattice_gain_rms", out_report.lattice_gain_rms}};
+                                    {"lattice_gain", LatticeGainJson(out_report.lattice_gain)}};
   if (!capture_metadata.camera_model.empty())
     light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
   return light_field;

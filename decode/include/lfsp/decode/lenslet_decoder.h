@@ -1,10 +1,12 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/decode/demosaic.h"
+#include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/lytro_metadata.h"
 #include "lfsp/decode/raw_packing.h"
@@ -55,12 +57,11 @@ struct DecodeReport {
   std::string demosaic;
   std::string colour;
   long hot_pixels_corrected = 0;
-  double output_scale = 1.0;              // the factor that brought the brightest decoded sample to <= 1 (no clipping)
-  double row_alternation = 0.0;           // RowAlternationRatio of the result (~1 clean, > 2 striped)
-  double lattice_gain_rms = 0.0;          // the lattice-locked gain found in the views (FlattenLatticeGain), rms
-  double lattice_gain_max = 0.0;          // and its largest deviation from 1
-  std::map<std::string, double> seconds;  // wall time per step
-  std::map<std::string, double> cpu_seconds;  // CPU time per step, all threads
+  double output_scale = 1.0;     // the factor that brought the brightest decoded sample to <= 1 (no clipping)
+  double row_alternation = 0.0;  // RowAlternationRatio of the result (~1 clean, > 2 striped)
+  std::optional<LatticeGainReport> lattice_gain;  // what FlattenLatticeGain found; none when it did not run
+  std::map<std::string, double> seconds;          // wall time per step
+  std::map<std::string, double> cpu_seconds;      // CPU time per step, all threads
   nlohmann::json ToJson() const;
 };
 
