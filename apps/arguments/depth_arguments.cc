@@ -40,10 +40,19 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str();
   command
       ->add_option("--excluded-ring", method.cost.excluded_ring,
-                   "Leave the views within N steps of the centre out of the cost; -1 = automatic (1 for light "
-                   "fields decoded from a lenslet capture, whose neighbouring views share sensor pixels and noise)")
+                   "Leave the views within N steps of the centre out of the cost; -1 = automatic: on a light "
+                   "field decoded from a lenslet capture, whose nearby views share sensor pixels and noise, 2 when "
+                   "at least 7x7 views remain, 1 with 5x5; 0 otherwise")
       ->capture_default_str()
       ->check(CLI::Range(-1, 16));
+  command
+      ->add_option("--sampler", arguments.sampler,
+                   "How views are resampled at sub-pixel shifts: bilinear (sharpest) | noise-matched (a cubic kernel "
+                   "that keeps the same noise at every shift, so noise cannot pull disparities off whole-pixel "
+                   "shifts; blurs by the cubic B-spline) | automatic: noise-matched on lenslet decodes and on views "
+                   "noisier than 0.003, bilinear on clean rendered light fields")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"automatic", "auto", "bilinear", "noise-matched"}));
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -67,9 +76,8 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->check(CLI::Range(-1.0, 100.0));
   command
       ->add_option("--presmooth", method.presmooth_sigma,
-                   "Gaussian smoothing of every view before matching, pixels; -1 = automatic from the estimated noise "
-                   "(none on clean views, up to 2.5 px in low light; at least 1.5 px on a lenslet decode, exactly 1.5 "
-                   "px on one whose fine-band signal-to-noise ratio is 8 or more), 0 = off")
+                   "Gaussian smoothing of every view before matching, pixels; -1 = automatic: 0.6 px on noisy views "
+                   "(a lenslet decode, or estimated noise above 0.003), none on clean ones; 0 = off")
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 10.0));
   command->add_option("--median-radius", method.median_radius, "Weighted-median refinement radius (0 = off)")
@@ -84,6 +92,7 @@ depth::DepthOptions ToDepthOptions(const DepthArguments& arguments) {
   if (arguments.dmin) method.range = DisparityRange{*arguments.dmin, *arguments.dmax};
   if (arguments.no_occlusion) method.occlusion_handling = false;
   if (arguments.winner_take_all) method.regularise = false;
+  method.cost.sampler = depth::SamplerFromString(arguments.sampler);
   if (!arguments.channel_weights.empty()) {
     if (arguments.channel_weights.size() != 3)
       throw Error(OptionName("channel_weights") + " takes three weights: red, green, blue");

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "lfsp/depth/depth_estimator.h"
@@ -16,6 +17,7 @@ struct DepthArguments {
   bool no_occlusion = false;
   bool winner_take_all = false;
   std::vector<float> channel_weights;  // empty: automatic
+  std::string sampler = "automatic";
   depth::DepthOptions method;
 };
 

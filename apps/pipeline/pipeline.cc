@@ -178,6 +178,7 @@ nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const
            {{"noise_sigma", estimate.noise_sigma},
             {"presmooth_sigma", estimate.presmooth_sigma},
             {"occlusion_radius", estimate.occlusion_radius},
+            {"sampler", depth::SamplerName(estimate.sampler)},
             {"excluded_ring", estimate.excluded_ring},
             {"detail_weight", estimate.detail_weight}}}};
 }

@@ -28,6 +28,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["noise_sigma"] = estimate.noise_sigma;
   summary["fine_band_snr"] = estimate.fine_band_snr;
   summary["presmooth_sigma"] = estimate.presmooth_sigma;
+  summary["sampler"] = depth::SamplerName(estimate.sampler);
   summary["excluded_ring"] = estimate.excluded_ring;
   summary["detail_weight"] = estimate.detail_weight;
   summary["channel_weights"] = estimate.channel_weights;

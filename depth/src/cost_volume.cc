@@ -10,6 +10,7 @@
 #include "lfsp/core/conventions.h"
 #include "lfsp/core/error.h"
 #include "lfsp/depth/detail_weight.h"
+#include "lfsp/depth/noise_matched_kernel.h"
 
 namespace lfsp::depth {
 namespace {
@@ -34,16 +35,16 @@ struct TermWeights {
   float detail_weight;
 };
 
-// Bilinear samples of one view's feature row at (x + sx, y + sy), compared with the centre view's feature row:
-// cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
-//           + detail_weight * min(|d detail|, truncation),
-// added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
-// is 1 (if along is not null). Samples beyond the border are clamped. `differences` is scratch for
-// (kFeatureChannels + 1) * width floats. Built twice (AVX2 and generic) and chosen at run time: the interpolation
-// runs over the interleaved samples as one contiguous, vectorised loop.
-__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(
-    const float* view, int width, int height, int y, float sx, float sy, const float* centre_row, TermWeights terms,
-    float* differences, float* total, const float* in_half_a, float* half_a, const float* in_along, float* along) {
+// One view's feature row resampled at (x + sx, y + sy) and compared with the centre view's feature row:
+// differences[kC x + c] = |sample - centre|, per feature channel. Samples beyond the border are clamped. Built twice
+// (AVX2 and generic) and chosen at run time: the interpolation runs over the interleaved samples as one contiguous,
+// vectorised loop.
+//
+// Bilinear: two taps per axis.
+__attribute__((target_clones("avx2", "default"))) void DifferencesBilinear(const float* view, int width, int height,
+                                                                           int y, float sx, float sy,
+                                                                           const float* centre_row,
+                                                                           float* differences) {
   constexpr int kC = kFeatureChannels;
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
@@ -81,10 +82,64 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(
   };
   for (int x = 0; x < x_begin; ++x) clamped(x);
   for (int x = x_end; x < width; ++x) clamped(x);
+}
 
-  // Separate, non-aliasing buffers so these loops vectorise too.
-  const float* __restrict d = differences;
-  float* __restrict cost = differences + kC * width;
+// Noise-matched (noise_matched_kernel.h): four taps per axis, separably: the four rows are mixed into `mixed`
+// (kFeatureChannels * width floats of scratch), then four columns of that.
+__attribute__((target_clones("avx2", "default"))) void DifferencesNoiseMatched(const float* view, int width, int height,
+                                                                               int y, float sx, float sy,
+                                                                               const float* centre_row,
+                                                                               float* differences, float* mixed) {
+  constexpr int kC = kFeatureChannels;
+  const float fx = std::floor(sx);
+  const float fy = std::floor(sy);
+  const int ix = static_cast<int>(fx);
+  const int iy = static_cast<int>(fy);
+  const std::array<float, 4> wx = NoiseMatchedWeights(sx - fx);
+  const std::array<float, 4> wy = NoiseMatchedWeights(sy - fy);
+  const std::size_t stride = static_cast<std::size_t>(width) * kC;
+  const auto row = [&](int k) {
+    return view + static_cast<std::size_t>(std::clamp(y + iy - 1 + k, 0, height - 1)) * stride;
+  };
+  {
+    const float* __restrict r0 = row(0);
+    const float* __restrict r1 = row(1);
+    const float* __restrict r2 = row(2);
+    const float* __restrict r3 = row(3);
+    float* __restrict m = mixed;
+    for (std::size_t p = 0; p < stride; ++p) m[p] = wy[0] * r0[p] + wy[1] * r1[p] + wy[2] * r2[p] + wy[3] * r3[p];
+  }
+  // Columns whose four taps are all inside the row.
+  const int x_begin = std::clamp(1 - ix, 0, width);
+  const int x_end = std::clamp(width - 2 - ix, x_begin, width);
+  const int shift = kC * ix;
+  for (int p = kC * x_begin; p < kC * x_end; ++p) {
+    const int q = p + shift;
+    const float sample = wx[0] * mixed[q - kC] + wx[1] * mixed[q] + wx[2] * mixed[q + kC] + wx[3] * mixed[q + 2 * kC];
+    differences[p] = std::abs(sample - centre_row[p]);
+  }
+  auto clamped = [&](int x) {
+    for (int c = 0; c < kC; ++c) {
+      float sample = 0.0f;
+      for (int k = 0; k < 4; ++k) sample += wx[k] * mixed[std::clamp(x + ix - 1 + k, 0, width - 1) * kC + c];
+      differences[kC * x + c] = std::abs(sample - centre_row[kC * x + c]);
+    }
+  };
+  for (int x = 0; x < x_begin; ++x) clamped(x);
+  for (int x = x_end; x < width; ++x) clamped(x);
+}
+
+// Per pixel, from the feature differences:
+// cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
+//           + detail_weight * min(|d detail|, truncation),
+// added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
+// is 1 (if along is not null). `cost` is scratch for width floats.
+__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* __restrict d, int width,
+                                                                         TermWeights terms, float* __restrict cost,
+                                                                         float* total, const float* in_half_a,
+                                                                         float* half_a, const float* in_along,
+                                                                         float* along) {
+  constexpr int kC = kFeatureChannels;
   const float wr = terms.channel[0], wg = terms.channel[1], wb = terms.channel[2];
   for (int x = 0; x < width; ++x) {
     const float colour =
@@ -99,6 +154,17 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(
   if (along != nullptr) {
     for (int x = 0; x < width; ++x) along[x] += cost[x] * in_along[x];
   }
+}
+
+// The centre view's features as the noise-matched sampler compares them: blurred by kNoiseMatchedCentreKernel.
+std::vector<float> NoiseMatchedCentre(const float* centre, const LightFieldShape& shape) {
+  std::vector<float> blurred(shape.ViewPixels() * kFeatureChannels);
+  const cv::Mat source(shape.height, shape.width, CV_32FC(kFeatureChannels), const_cast<float*>(centre));
+  cv::Mat target(shape.height, shape.width, CV_32FC(kFeatureChannels), blurred.data());
+  const cv::Mat kernel(3, 1, CV_32F, const_cast<float*>(kNoiseMatchedCentreKernel.data()));
+  // Replicated borders, as the resampled views clamp their taps.
+  cv::sepFilter2D(source, target, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  return blurred;
 }
 
 // Every view as kFeatureChannels interleaved samples per pixel: its RGB, and its detail image: the high-pass grey
@@ -189,6 +255,24 @@ void CheckInput(const LightField& light_field, const std::vector<float>& dispari
 
 }  // namespace
 
+std::string SamplerName(Sampler sampler) {
+  switch (sampler) {
+    case Sampler::kBilinear:
+      return "bilinear";
+    case Sampler::kNoiseMatched:
+      return "noise-matched";
+    case Sampler::kAutomatic:
+      break;
+  }
+  return "automatic";
+}
+
+Sampler SamplerFromString(const std::string& name) {
+  for (const Sampler sampler : {Sampler::kAutomatic, Sampler::kBilinear, Sampler::kNoiseMatched})
+    if (name == SamplerName(sampler) || (name == "auto" && sampler == Sampler::kAutomatic)) return sampler;
+  throw Error("sampler '" + name + "': unknown (expected automatic, bilinear or noise-matched)");
+}
+
 std::vector<float> LabelDisparities(float min, float max, int count) {
   if (count < 3)
     throw Error("depth: " + OptionName("labels") + " must be at least 3 (got " + std::to_string(count) + ")");
@@ -214,7 +298,10 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     throw Error("depth: the cost needs the detail or the colour term");
   }
   const std::vector<float> features = MakeFeatureImages(light_field, options);
-  const float* centre = FeatureView(features, shape, shape.Centre());
+  const bool noise_matched = options.sampler == Sampler::kNoiseMatched;
+  const std::vector<float> blurred_centre =
+      noise_matched ? NoiseMatchedCentre(FeatureView(features, shape, shape.Centre()), shape) : std::vector<float>();
+  const float* centre = noise_matched ? blurred_centre.data() : FeatureView(features, shape, shape.Centre());
   const std::vector<ViewPlan> plans = PlanViews(shape, features, std::max(0, options.excluded_ring));
   if (plans.empty())
     throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
@@ -247,7 +334,9 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     const bool along_edge = occlusion && options.along_edge_penalty > 0.0f;
     std::vector<float> alongs(along_edge ? totals.size() : 0);
     std::vector<float> in_along(along_edge ? static_cast<std::size_t>(kSectors) * tile_size : 0);
-    std::vector<float> differences(row_samples + static_cast<std::size_t>(width));  // samples, then costs
+    std::vector<float> differences(row_samples);
+    std::vector<float> costs(static_cast<std::size_t>(width));
+    std::vector<float> mixed(noise_matched ? row_samples : 0);
     auto row_of = [&](std::vector<float>& buffer, int index, int row) {
       return buffer.data() + static_cast<std::size_t>(index) * tile_size +
              static_cast<std::size_t>(row) * static_cast<std::size_t>(width);
@@ -281,11 +370,18 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
           const float sy = -plan.dv * d;
           for (int y = y_begin; y < y_end; ++y) {
             const int row = y - y_begin;
-            AccumulateRowCost(
-                plan.features, width, height, y, sx, sy, centre + static_cast<std::size_t>(y) * row_samples, terms,
-                differences.data(), row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
-                occlusion ? row_of(halves, l, row) : nullptr, along_edge ? row_of(in_along, plan.sector, row) : nullptr,
-                along_edge ? row_of(alongs, l, row) : nullptr);
+            const float* centre_row = centre + static_cast<std::size_t>(y) * row_samples;
+            if (noise_matched) {
+              DifferencesNoiseMatched(plan.features, width, height, y, sx, sy, centre_row, differences.data(),
+                                      mixed.data());
+            } else {
+              DifferencesBilinear(plan.features, width, height, y, sx, sy, centre_row, differences.data());
+            }
+            AccumulateRowCost(differences.data(), width, terms, costs.data(), row_of(totals, l, row),
+                              occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
+                              occlusion ? row_of(halves, l, row) : nullptr,
+                              along_edge ? row_of(in_along, plan.sector, row) : nullptr,
+                              along_edge ? row_of(alongs, l, row) : nullptr);
           }
         }
       }

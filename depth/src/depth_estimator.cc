@@ -62,14 +62,13 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     result.timings[step] = stopwatch.Lap();
     progress.Tick();
   };
-  // Noisy views (low light) are smoothed before matching: the per-pixel cost cannot tell noise from texture.
+  // Noisy views (lenslet decodes, low light) are smoothed a little and resampled by the noise-matched kernel.
   const std::vector<double> channel_noise =
       EstimateNoiseSigmaPerChannel(light_field.View(light_field.shape().Centre()));
   result.noise_sigma = *std::max_element(channel_noise.begin(), channel_noise.end());  // EstimateChannelNoiseSigma
   result.fine_band_snr = FineBandSignalToNoise(light_field.View(light_field.shape().Centre()), options.cost);
-  result.presmooth_sigma = options.presmooth_sigma < 0.0f
-                               ? AutomaticPresmoothSigma(light_field, result.noise_sigma, result.fine_band_snr)
-                               : options.presmooth_sigma;
+  result.presmooth_sigma = options.presmooth_sigma < 0.0f ? AutomaticPresmoothSigma(light_field, result.noise_sigma)
+                                                          : options.presmooth_sigma;
   std::optional<LightField> smoothed;
   if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
   const LightField& views = smoothed ? *smoothed : light_field;
@@ -91,6 +90,9 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   CostOptions cost_options = options.cost;
   if (cost_options.excluded_ring < 0) cost_options.excluded_ring = ExcludedRingFor(light_field);
   result.excluded_ring = cost_options.excluded_ring;
+  if (cost_options.sampler == Sampler::kAutomatic)
+    cost_options.sampler = AutomaticSampler(light_field, result.noise_sigma);
+  result.sampler = cost_options.sampler;
   if (cost_options.detail_weight < 0.0f)
     cost_options.detail_weight =
         DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma,

@@ -1,29 +1,26 @@
 #include "lfsp/depth/presmooth.h"
 
-#include "lfsp/depth/detail_weight.h"
-
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
 namespace lfsp::depth {
 
-double PresmoothSigmaForNoise(double noise_sigma) {
-  return std::clamp(1000.0 * (noise_sigma - kDepthCleanNoise), 0.0, 2.5);
+bool NoisyViews(const LightField& light_field, double noise_sigma) {
+  return DecodedFromSensor(light_field) || noise_sigma > kDepthCleanNoise;
+}
+
+double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma) {
+  return NoisyViews(light_field, noise_sigma) ? kNoisyViewsPresmooth : 0.0;
 }
 
 int ExcludedRingFor(const LightField& light_field) {
-  const LightFieldShape& shape = light_field.shape();
-  return DecodedFromSensor(light_field) && std::min(shape.nu, shape.nv) >= 5 ? 1 : 0;
+  if (!DecodedFromSensor(light_field)) return 0;
+  const int views = std::min(light_field.shape().nu, light_field.shape().nv);
+  return views >= 7 ? 2 : views >= 5 ? 1 : 0;
 }
 
-double PresmoothFloorFor(const LightField& light_field) {
-  return DecodedFromSensor(light_field) ? kLensletPresmoothFloor : 0.0;
-}
-
-double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma, double fine_band_snr) {
-  const double floor = PresmoothFloorFor(light_field);
-  if (floor > 0.0 && fine_band_snr >= kFineTextureHigh) return floor;
-  return std::max(PresmoothSigmaForNoise(noise_sigma), floor);
+Sampler AutomaticSampler(const LightField& light_field, double noise_sigma) {
+  return NoisyViews(light_field, noise_sigma) ? Sampler::kNoiseMatched : Sampler::kBilinear;
 }
 
 LightField Presmoothed(const LightField& light_field, double sigma) {

@@ -18,14 +18,6 @@
 namespace lfsp::depth {
 namespace {
 
-TEST(NoiseEstimate, SmoothingGrowsWithNoiseAndIsCapped) {
-  EXPECT_EQ(PresmoothSigmaForNoise(0.0019), 0.0);  // HCI antinous
-  EXPECT_EQ(PresmoothSigmaForNoise(kDepthCleanNoise), 0.0);
-  EXPECT_NEAR(PresmoothSigmaForNoise(0.004), 1.0, 1e-9);
-  EXPECT_LT(PresmoothSigmaForNoise(0.0035), PresmoothSigmaForNoise(0.0045));
-  EXPECT_EQ(PresmoothSigmaForNoise(0.5), 2.5);
-}
-
 double MeanAbsoluteError(const DisparityMap& a, const DisparityMap& b) {
   double sum = 0.0;
   for (int y = 0; y < a.height(); ++y)
@@ -59,19 +51,28 @@ TEST(Presmooth, AutomaticSmoothingRescuesDepthOnANoisyLightField) {
   EXPECT_EQ(clean.presmooth_sigma, 0.0) << "noise estimate on the clean views: " << clean.noise_sigma;
 }
 
-// A lenslet decode is smoothed at least by the floor; one whose texture reaches the pixel scale (fine-band ratio of
-// kFineTextureHigh or more) by the floor only, whatever its noise; rendered light fields follow the noise rule alone.
-TEST(Presmooth, AutomaticSmoothingFollowsTheSourceAndTheFineBand) {
-  LightField rendered(LightFieldShape{3, 3, 8, 8, 3});
-  LightField decoded(LightFieldShape{3, 3, 8, 8, 3});
+// Noisy views (a lenslet decode, or noise above kDepthCleanNoise) are smoothed by kNoisyViewsPresmooth and
+// resampled by the noise-matched kernel; clean rendered ones are neither. A decode leaves out ring 2 when 7x7 views
+// remain, ring 1 with 5x5.
+TEST(Presmooth, AutomaticChoicesFollowTheViewsNoiseAndSource) {
+  LightField decoded(LightFieldShape{9, 9, 8, 8, 3});
   decoded.metadata["decode"] = {{"demosaic", "gradient"}};
-  const double noisy = 0.02;  // the noise rule's 2.5 px
-  EXPECT_EQ(AutomaticPresmoothSigma(rendered, noisy, 20.0), 2.5);
-  EXPECT_EQ(AutomaticPresmoothSigma(decoded, noisy, 2.6), 2.5) << "a full-size decode of a weak texture";
-  EXPECT_EQ(AutomaticPresmoothSigma(decoded, noisy, kFineTextureHigh), kLensletPresmoothFloor)
-      << "the bundled mini sample (ratio 10.4)";
-  EXPECT_EQ(AutomaticPresmoothSigma(decoded, 0.0, 2.6), kLensletPresmoothFloor) << "a clean decode keeps the floor";
-  EXPECT_EQ(AutomaticPresmoothSigma(rendered, 0.0, 2.6), 0.0);
+  const LightField rendered(LightFieldShape{9, 9, 8, 8, 3});
+  const double noisy = 0.02;
+  EXPECT_EQ(AutomaticPresmoothSigma(rendered, 0.0019), 0.0) << "HCI antinous";
+  EXPECT_EQ(AutomaticPresmoothSigma(rendered, kDepthCleanNoise), 0.0);
+  EXPECT_EQ(AutomaticPresmoothSigma(rendered, noisy), kNoisyViewsPresmooth);
+  EXPECT_EQ(AutomaticPresmoothSigma(decoded, 0.0), kNoisyViewsPresmooth) << "a decode is noisy at the pixel scale";
+  EXPECT_EQ(AutomaticSampler(rendered, 0.0019), Sampler::kBilinear);
+  EXPECT_EQ(AutomaticSampler(rendered, noisy), Sampler::kNoiseMatched);
+  EXPECT_EQ(AutomaticSampler(decoded, 0.0), Sampler::kNoiseMatched);
+  EXPECT_EQ(ExcludedRingFor(rendered), 0);
+  EXPECT_EQ(ExcludedRingFor(decoded), 2);
+  for (const int views : {7, 5, 3}) {
+    LightField central(LightFieldShape{views, views, 8, 8, 3});
+    central.metadata = decoded.metadata;
+    EXPECT_EQ(ExcludedRingFor(central), views >= 7 ? 2 : views >= 5 ? 1 : 0) << views << "x" << views;
+  }
 }
 
 // The automatic detail weight: whole on unsmoothed views; on smoothed ones, low where the detail band holds little

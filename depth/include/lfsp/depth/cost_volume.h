@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <opencv2/core/mat.hpp>
+#include <string>
 #include <vector>
 
 #include "lfsp/core/light_field.h"
@@ -44,6 +45,17 @@ class CostVolume {
 // The disparity of each label: `count` values evenly spaced from min to max inclusive.
 std::vector<float> LabelDisparities(float min, float max, int count);
 
+// How a view is resampled at the sub-pixel shift a label predicts (noise_matched_kernel.h).
+enum class Sampler {
+  kAutomatic,     // EstimateDepth: noise-matched on noisy views and lenslet decodes, else bilinear
+  kBilinear,      // sharpest; on noisy views its noise varies with the shift and biases the cost
+  kNoiseMatched,  // cubic, the same noise at every shift; blurs by the cubic B-spline (the centre view too)
+};
+
+// "automatic", "bilinear", "noise-matched"; SamplerFromString throws lfsp::Error on any other name.
+std::string SamplerName(Sampler sampler);
+Sampler SamplerFromString(const std::string& name);
+
 // Each non-centre view contributes, per pixel and label, a truncated L1 difference to the centre view in two
 // representations of the images:
 //  - detail: the high-pass grey image G - Gaussian(G, detail_sigma), G the mean of RGB, divided by its local RMS
@@ -82,15 +94,16 @@ struct CostOptions {
   // lookup mix them: the centre view shares noise with its neighbours at zero shift, which draws every disparity
   // towards 0 (full-size F01 strips with sensor noise read 0.72x their disparity).
   int excluded_ring = -1;
+  Sampler sampler = Sampler::kAutomatic;  // BuildCostVolume alone reads automatic as bilinear
   int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile (the
-// light field is read in place; only the detail images are made, once): each non-centre view is resampled
-// bilinearly at the sub-pixel shift the label predicts and compared with the centre view (see CostOptions). Views are
-// accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular patch on one
-// side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge orientation). Without
-// `occlusion` (nullptr) every pixel averages all views. The light field must be RGB (3 channels).
+// light field is read in place; only the detail images are made, once): each non-centre view is resampled at the
+// sub-pixel shift the label predicts (CostOptions::sampler) and compared with the centre view (see CostOptions).
+// Views are accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular
+// patch on one side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge
+// orientation). Without `occlusion` (nullptr) every pixel averages all views. The light field must be RGB (3 channels).
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
                            const CostOptions& options, const OcclusionMap* occlusion);
 

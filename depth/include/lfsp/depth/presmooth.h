@@ -2,37 +2,40 @@
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/noise.h"
+#include "lfsp/depth/cost_volume.h"
 
 namespace lfsp::depth {
 
-// The Gaussian pre-smoothing (pixels) chosen for a noise level (EstimateChannelNoiseSigma of the centre view):
-// none up to kDepthCleanNoise, then 1 px per 0.001 of noise above it, capped at 2.5 px. Calibrated on full-size
-// captures of fronto-parallel strips at d = -1.5 .. 1.5 decoded to their well-lit views, with sensor noise: Illum
-// reads 0.0056 and needs 2-2.5 px for every strip to be within 0.02 (unsmoothed: up to 0.12 off), F01 reads 0.0052
-// and needs 2-2.5 px (unsmoothed: up to 0.28 off); HCI antinous reads 0.0019 and is not smoothed.
+// The automatic choices that follow the views' noise. Views are noisy when they were decoded from a lenslet sensor
+// (the metadata says so: a decode always carries pixel-scale noise, white-image shot noise and quantisation resampled
+// twice, which the noise estimate reads low because the resampling correlates it) or when the centre view's estimated
+// noise (EstimateChannelNoiseSigma) is above kDepthCleanNoise (HCI antinous reads 0.0019).
 constexpr double kDepthCleanNoise = 0.003;
-double PresmoothSigmaForNoise(double noise_sigma);
+bool NoisyViews(const LightField& light_field, double noise_sigma);
 
-// The least smoothing for views decoded from a lenslet sensor (kLensletPresmoothFloor px, when the light field's
-// metadata says it was decoded; 0 otherwise). Pixel-scale noise makes the cost prefer fractional shifts, where the
-// bilinear resampling of a view averages noise down, so disparities near integers are pushed off them. A decoded
-// capture always carries such noise (white-image shot noise and quantisation, resampled twice), and the noise
-// estimate reads it low because the resampling correlates it. Measured on full-size noise-free captures:
-//  - Illum plane at d = -1, central 9x9: -1.083 unsmoothed, -0.992 at 0.8 px, -0.988 at 1.6 (ideal: -0.988); the
-//    ideal light field plus white noise of 0.001 reproduces the bias (-1.086);
-//  - F01 strips, central 7x7: d = +-1 read +-0.95 at 0.8 px, +-0.99 at 1.2 and 1.6 px.
-// Rendered light fields (HCI) keep the noise rule alone: 0.8 px there costs antinous MSE x100 5.5 -> 11.2.
-constexpr double kLensletPresmoothFloor = 1.5;
-double PresmoothFloorFor(const LightField& light_field);
+// The automatic CostOptions::sampler: noise-matched on noisy views, bilinear on clean ones, whose fine texture the
+// noise-matched kernel's blur would soften (HCI antinous: BadPix 0.07 / MSE x100 5.7 / 5.4 bilinear, 5.4 / 9.5
+// noise-matched).
+Sampler AutomaticSampler(const LightField& light_field, double noise_sigma);
 
-// The automatic presmoothing: the noise rule, at least the lenslet floor; but a decode whose texture reaches the
-// pixel scale (fine_band_snr >= kFineTextureHigh, detail_weight.h) is smoothed by the floor alone, as the noise rule
-// would blur its signal away with the noise: the bundled 80x60 mini-Illum decode (noise 0.033, fine_band_snr 10.4)
-// reads BadPix 0.07 48.5 % at the noise rule's 2.5 px and 28.7 % at the floor's 1.5 px.
-double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma, double fine_band_snr);
+// The automatic Gaussian pre-smoothing, pixels: kNoisyViewsPresmooth on noisy views, none on clean ones. With the
+// noise-matched sampler noise no longer biases the cost, so smoothing only trades noise for resolution, and little
+// is best at every noise level measured (BadPix 0.07, presmoothing 0 / 0.6 / 1.0 / 1.5 / 2.5 px):
+//  - HCI antinous plus white noise 0.005: 9.9 / 10.2 / 11.9 / 17.1 / 38.0 %; 0.01: 14.5 / 13.8 / 15.0 / 20.8 /
+//    45.5 %; 0.04: - / 35.5 / 36.2 / 38.7 / 58.1 % (bilinear at the old noise rule's 2.5 px: 36.7, 44.8, 60.7 %);
+//  - full-size F01 two-horses capture, central 7x7, ring 2 left out: 0.6 px 4.9 %, 0.8 px 5.0 %, 1.0 px 5.1 %;
+//    Illum, central 9x9: 0.6 px 2.0 %, 0.8 px 2.1 %.
+// Without any smoothing the detail term (kept whole on unsmoothed views) locks onto a decode's lattice residue.
+constexpr double kNoisyViewsPresmooth = 0.6;
+double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma);
 
-// The automatic CostOptions::excluded_ring: 1 for light fields decoded from a lenslet sensor that keep at least
-// 5x5 views (the ring of 8 next to the centre shares its sensor pixels), else 0.
+// The automatic CostOptions::excluded_ring for light fields decoded from a lenslet sensor, whose neighbouring views
+// are neighbouring sensor pixels (about 1 px apart on Illum and F01) mixed by demosaicking and the sub-pixel lookup.
+// The noise of a full-size F01 decode of a grey plane correlates with the centre view's by 0.64 (views one step away
+// along an axis), 0.41 (diagonal), 0.20 (two steps along an axis), 0.12 (two and one), 0.03 or less beyond; at zero
+// shift that shared noise draws every disparity towards 0. Ring 2 is left out when at least 7x7 views remain (F01
+// two-horses capture: BadPix 0.07 7.5 -> 4.9 %; Illum 2.4 -> 2.0 %), ring 1 with 5x5, none otherwise or on rendered
+// light fields.
 int ExcludedRingFor(const LightField& light_field);
 
 // A copy of the light field with every view Gaussian-smoothed (sigma in pixels), in parallel over views; transfer
