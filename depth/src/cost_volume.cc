@@ -17,13 +17,16 @@ namespace {
 
 // One non-centre view: where its samples are, how far it sits from the centre view, and its angular sector.
 struct ViewPlan {
-  const float* features;  // the view's feature rows: R, G, B, detail interleaved (kFeatureChannels per pixel)
+  const float* features;  // the view's feature rows: R, G, B (and detail) interleaved
   float du;               // u - uc
   float dv;               // v - vc
   int sector;
 };
 
-constexpr int kFeatureChannels = 4;
+// Feature channels per pixel: R, G, B, and the detail image when the detail term has weight (without it, the
+// colour alone: a quarter less to resample, which is most of the cost's time).
+constexpr int kColourChannels = 3;
+constexpr int kColourAndDetailChannels = 4;
 
 // The per-view cost terms (CostOptions), as plain numbers for the inner loop.
 struct TermWeights {
@@ -41,11 +44,11 @@ struct TermWeights {
 // vectorised loop.
 //
 // Bilinear: two taps per axis.
+template <int kC>
 __attribute__((target_clones("avx2", "default"))) void DifferencesBilinear(const float* view, int width, int height,
                                                                            int y, float sx, float sy,
                                                                            const float* centre_row,
                                                                            float* differences) {
-  constexpr int kC = kFeatureChannels;
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
   const float ax = sx - fx;
@@ -85,12 +88,12 @@ __attribute__((target_clones("avx2", "default"))) void DifferencesBilinear(const
 }
 
 // Noise-matched (noise_matched_kernel.h): four taps per axis, separably: the four rows are mixed into `mixed`
-// (kFeatureChannels * width floats of scratch), then four columns of that.
+// (kC * width floats of scratch), then four columns of that.
+template <int kC>
 __attribute__((target_clones("avx2", "default"))) void DifferencesNoiseMatched(const float* view, int width, int height,
                                                                                int y, float sx, float sy,
                                                                                const float* centre_row,
                                                                                float* differences, float* mixed) {
-  constexpr int kC = kFeatureChannels;
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
   const int ix = static_cast<int>(fx);
@@ -134,18 +137,20 @@ __attribute__((target_clones("avx2", "default"))) void DifferencesNoiseMatched(c
 //           + detail_weight * min(|d detail|, truncation),
 // added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
 // is 1 (if along is not null). `cost` is scratch for width floats.
+template <int kC>
 __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* __restrict d, int width,
                                                                          TermWeights terms, float* __restrict cost,
                                                                          float* total, const float* in_half_a,
                                                                          float* half_a, const float* in_along,
                                                                          float* along) {
-  constexpr int kC = kFeatureChannels;
   const float wr = terms.channel[0], wg = terms.channel[1], wb = terms.channel[2];
   for (int x = 0; x < width; ++x) {
     const float colour =
         std::min(std::max(wr * d[kC * x] + wg * d[kC * x + 1] + wb * d[kC * x + 2] - terms.colour_deadzone, 0.0f),
                  terms.colour_truncation);
-    cost[x] = terms.colour_weight * colour + terms.detail_weight * std::min(d[kC * x + 3], terms.detail_truncation);
+    cost[x] = terms.colour_weight * colour;
+    if constexpr (kC > kColourChannels)
+      cost[x] += terms.detail_weight * std::min(d[kC * x + 3], terms.detail_truncation);
   }
   for (int x = 0; x < width; ++x) total[x] += cost[x];
   if (half_a != nullptr) {
@@ -156,43 +161,80 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   }
 }
 
+// One view's cost at one label for one row, added to the tile's accumulators (see AccumulateRowCost).
+struct RowAccumulators {
+  float* total;
+  const float* in_half_a;
+  float* half_a;
+  const float* in_along;
+  float* along;
+};
+
+template <int kC>
+void AddViewRow(bool noise_matched, const float* view, int width, int height, int y, float sx, float sy,
+                const float* centre_row, const TermWeights& terms, float* differences, float* mixed, float* costs,
+                const RowAccumulators& into) {
+  if (noise_matched) {
+    DifferencesNoiseMatched<kC>(view, width, height, y, sx, sy, centre_row, differences, mixed);
+  } else {
+    DifferencesBilinear<kC>(view, width, height, y, sx, sy, centre_row, differences);
+  }
+  AccumulateRowCost<kC>(differences, width, terms, costs, into.total, into.in_half_a, into.half_a, into.in_along,
+                        into.along);
+}
+
+// Every view's features, interleaved per pixel (`channels` of them), views in the light field's order.
+struct FeatureImages {
+  int channels = kColourAndDetailChannels;
+  std::vector<float> samples;
+
+  const float* View(const LightFieldShape& shape, ViewIndex view) const {
+    return samples.data() + static_cast<std::size_t>(CameraNumber(view, shape.nu)) * shape.ViewPixels() *
+                                static_cast<std::size_t>(channels);
+  }
+};
+
 // The centre view's features as the noise-matched sampler compares them: blurred by kNoiseMatchedCentreKernel.
-std::vector<float> NoiseMatchedCentre(const float* centre, const LightFieldShape& shape) {
-  std::vector<float> blurred(shape.ViewPixels() * kFeatureChannels);
-  const cv::Mat source(shape.height, shape.width, CV_32FC(kFeatureChannels), const_cast<float*>(centre));
-  cv::Mat target(shape.height, shape.width, CV_32FC(kFeatureChannels), blurred.data());
+std::vector<float> NoiseMatchedCentre(const FeatureImages& features, const LightFieldShape& shape) {
+  std::vector<float> blurred(shape.ViewPixels() * static_cast<std::size_t>(features.channels));
+  const cv::Mat source(shape.height, shape.width, CV_32FC(features.channels),
+                       const_cast<float*>(features.View(shape, shape.Centre())));
+  cv::Mat target(shape.height, shape.width, CV_32FC(features.channels), blurred.data());
   const cv::Mat kernel(3, 1, CV_32F, const_cast<float*>(kNoiseMatchedCentreKernel.data()));
   // Replicated borders, as the resampled views clamp their taps.
   cv::sepFilter2D(source, target, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
   return blurred;
 }
 
-// Every view as kFeatureChannels interleaved samples per pixel: its RGB, and its detail image: the high-pass grey
-// image (mean of RGB; the colour of faint texture adds little, measured), optionally divided by its local RMS.
-// Without the detail term the fourth channel is zero. One array, views in the light field's order.
-std::vector<float> MakeFeatureImages(const LightField& light_field, const CostOptions& options) {
+// Every view's features: its RGB and, when `with_detail`, its detail image: the high-pass grey image (mean of RGB;
+// the colour of faint texture adds little, measured), optionally divided by its local RMS.
+FeatureImages MakeFeatureImages(const LightField& light_field, const CostOptions& options, bool with_detail) {
   const LightFieldShape& shape = light_field.shape();
-  std::vector<float> features(shape.Views() * shape.ViewPixels() * kFeatureChannels);
+  FeatureImages features;
+  features.channels = with_detail ? kColourAndDetailChannels : kColourChannels;
+  const std::size_t view_samples = shape.ViewPixels() * static_cast<std::size_t>(features.channels);
+  features.samples.resize(shape.Views() * view_samples);
   const int views = static_cast<int>(shape.Views());
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < views; ++i) {
     const ViewIndex view = ViewFromCameraNumber(i, shape.nu);
     const cv::Mat rgb = light_field.View(view);
-    cv::Mat detail(shape.height, shape.width, CV_32FC1, cv::Scalar(0));
-    if (options.detail_sigma > 0.0f) {
-      detail = DetailHighPass(rgb, options.detail_sigma);
-      if (options.detail_normalise_sigma > 0.0f) {
-        cv::Mat energy;
-        cv::multiply(detail, detail, energy);
-        cv::GaussianBlur(energy, energy, cv::Size(), options.detail_normalise_sigma, options.detail_normalise_sigma,
-                         cv::BORDER_REFLECT);
-        cv::sqrt(energy, energy);
-        energy += options.detail_normalise_epsilon;
-        cv::divide(detail, energy, detail);
-      }
+    cv::Mat target(shape.height, shape.width, CV_32FC(features.channels),
+                   features.samples.data() + static_cast<std::size_t>(i) * view_samples);
+    if (!with_detail) {
+      rgb.copyTo(target);
+      continue;
     }
-    cv::Mat target(shape.height, shape.width, CV_32FC(kFeatureChannels),
-                   features.data() + static_cast<std::size_t>(i) * shape.ViewPixels() * kFeatureChannels);
+    cv::Mat detail = DetailHighPass(rgb, options.detail_sigma);
+    if (options.detail_normalise_sigma > 0.0f) {
+      cv::Mat energy;
+      cv::multiply(detail, detail, energy);
+      cv::GaussianBlur(energy, energy, cv::Size(), options.detail_normalise_sigma, options.detail_normalise_sigma,
+                       cv::BORDER_REFLECT);
+      cv::sqrt(energy, energy);
+      energy += options.detail_normalise_epsilon;
+      cv::divide(detail, energy, detail);
+    }
     const cv::Mat sources[] = {rgb, detail};
     const int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
     cv::mixChannels(sources, 2, &target, 1, from_to, 4);
@@ -200,19 +242,14 @@ std::vector<float> MakeFeatureImages(const LightField& light_field, const CostOp
   return features;
 }
 
-const float* FeatureView(const std::vector<float>& features, const LightFieldShape& shape, ViewIndex view) {
-  return features.data() +
-         static_cast<std::size_t>(CameraNumber(view, shape.nu)) * shape.ViewPixels() * kFeatureChannels;
-}
-
-std::vector<ViewPlan> PlanViews(const LightFieldShape& shape, const std::vector<float>& features, int skip_ring) {
+std::vector<ViewPlan> PlanViews(const LightFieldShape& shape, const FeatureImages& features, int skip_ring) {
   const ViewIndex centre = shape.Centre();
   std::vector<ViewPlan> plans;
   for (int v = 0; v < shape.nv; ++v) {
     for (int u = 0; u < shape.nu; ++u) {
       if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) <= skip_ring) continue;
-      plans.push_back({FeatureView(features, shape, {u, v}), static_cast<float>(u - centre.u),
-                       static_cast<float>(v - centre.v), SectorOfOffset(u - centre.u, v - centre.v)});
+      plans.push_back({features.View(shape, {u, v}), static_cast<float>(u - centre.u), static_cast<float>(v - centre.v),
+                       SectorOfOffset(u - centre.u, v - centre.v)});
     }
   }
   return plans;
@@ -297,15 +334,6 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   if (!(options.detail_sigma > 0.0f) && !(options.colour_weight > 0.0f)) {
     throw Error("depth: the cost needs the detail or the colour term");
   }
-  const std::vector<float> features = MakeFeatureImages(light_field, options);
-  const bool noise_matched = options.sampler == Sampler::kNoiseMatched;
-  const std::vector<float> blurred_centre =
-      noise_matched ? NoiseMatchedCentre(FeatureView(features, shape, shape.Centre()), shape) : std::vector<float>();
-  const float* centre = noise_matched ? blurred_centre.data() : FeatureView(features, shape, shape.Centre());
-  const std::vector<ViewPlan> plans = PlanViews(shape, features, std::max(0, options.excluded_ring));
-  if (plans.empty())
-    throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
-                " of the centre leaves none");
   std::array<float, 3> channel = options.channel_weights;
   if (channel[0] < 0.0f) channel = {1.0f, 1.0f, 1.0f};
   const TermWeights terms{channel,
@@ -314,11 +342,22 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
                           options.colour_truncation,
                           options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f,
                           options.detail_weight < 0.0f ? 1.0f : options.detail_weight};
+  const bool with_detail = options.detail_sigma > 0.0f && terms.detail_weight > 0.0f;
+  const FeatureImages features = MakeFeatureImages(light_field, options, with_detail);
+  const bool noise_matched = options.sampler == Sampler::kNoiseMatched;
+  const std::vector<float> blurred_centre = noise_matched ? NoiseMatchedCentre(features, shape) : std::vector<float>();
+  const float* centre = noise_matched ? blurred_centre.data() : features.View(shape, shape.Centre());
+  const auto add_view_row =
+      features.channels == kColourChannels ? AddViewRow<kColourChannels> : AddViewRow<kColourAndDetailChannels>;
+  const std::vector<ViewPlan> plans = PlanViews(shape, features, std::max(0, options.excluded_ring));
+  if (plans.empty())
+    throw Error("depth: excluding the views within " + std::to_string(options.excluded_ring) +
+                " of the centre leaves none");
   const SplitTable splits = MakeSplitTable(plans);
   const float all_views = static_cast<float>(plans.size());
   const int tile_rows = std::max(1, options.tile_rows);
   const int tiles = (height + tile_rows - 1) / tile_rows;
-  const std::size_t row_samples = static_cast<std::size_t>(width) * kFeatureChannels;
+  const std::size_t row_samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(features.channels);
 
   CostVolume volume(width, height, labels);
 #pragma omp parallel
@@ -371,17 +410,12 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
           for (int y = y_begin; y < y_end; ++y) {
             const int row = y - y_begin;
             const float* centre_row = centre + static_cast<std::size_t>(y) * row_samples;
-            if (noise_matched) {
-              DifferencesNoiseMatched(plan.features, width, height, y, sx, sy, centre_row, differences.data(),
-                                      mixed.data());
-            } else {
-              DifferencesBilinear(plan.features, width, height, y, sx, sy, centre_row, differences.data());
-            }
-            AccumulateRowCost(differences.data(), width, terms, costs.data(), row_of(totals, l, row),
-                              occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
-                              occlusion ? row_of(halves, l, row) : nullptr,
-                              along_edge ? row_of(in_along, plan.sector, row) : nullptr,
-                              along_edge ? row_of(alongs, l, row) : nullptr);
+            add_view_row(noise_matched, plan.features, width, height, y, sx, sy, centre_row, terms, differences.data(),
+                         mixed.data(), costs.data(),
+                         {row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
+                          occlusion ? row_of(halves, l, row) : nullptr,
+                          along_edge ? row_of(in_along, plan.sector, row) : nullptr,
+                          along_edge ? row_of(alongs, l, row) : nullptr});
           }
         }
       }

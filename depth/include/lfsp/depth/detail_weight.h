@@ -31,7 +31,8 @@ cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma);
 //    (fine_band_snr about 2.6 on the full-size Illum and F01 two-horses decodes, 3.6 on the noise-free F01 one),
 //    the term is left out: F01 BadPix 0.07 55.4 -> 33.2 %, noise-free F01 13.9 -> 5.9 %, Illum 11.3 -> 8.6 % (depth
 //    alone). The bundled 80x60 mini-Illum decode, whose texture reaches the pixel scale (fine_band_snr 10.4), keeps
-//    its weight (0.79 -> 0.69 at its presmoothing; without the term it reads 94 % instead of 29 %).
+//    its weight (0.79 -> 0.69 at the old 1.5 px of presmoothing; without the term it read 94 % instead of 29 %;
+//    0.44 at today's 0.6 px, BadPix 0.07 19.8 %).
 constexpr double kDetailNoiseMargin = 16.0;
 
 // How strong the unsmoothed centre view's detail band is against what white noise of its noise floor would leave
