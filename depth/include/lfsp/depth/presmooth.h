@@ -26,6 +26,10 @@ Sampler AutomaticSampler(const LightField& light_field, double noise_sigma);
 //  - full-size F01 two-horses capture, central 7x7, ring 2 left out: 0.6 px 4.9 %, 0.8 px 5.0 %, 1.0 px 5.1 %;
 //    Illum, central 9x9: 0.6 px 2.0 %, 0.8 px 2.1 %.
 // Without any smoothing the detail term (kept whole on unsmoothed views) locks onto a decode's lattice residue.
+// Superpixels would take more in heavy noise: the low-light noise study (full-size Illum captures at exposures 0.7 /
+// 0.06 / 0.02, noise 0.013 / 0.043 / 0.075) reads LFSP self-similarity 0.669 / 0.871 / 1.064 px at 0.6 px and 0.669
+// / 0.860 / 0.981 px with 35 px per unit of noise above 0.02 added (at most 2.5 px), but depth itself was worse with
+// that (the planes scene plus noise 0.06: mean |error| 0.088 at 0.6 px, 0.101 at 2.2 px), so depth keeps 0.6 px.
 constexpr double kNoisyViewsPresmooth = 0.6;
 double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma);
 
@@ -34,7 +38,7 @@ double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma
 // The noise of a full-size F01 decode of a grey plane correlates with the centre view's by 0.64 (views one step away
 // along an axis), 0.41 (diagonal), 0.20 (two steps along an axis), 0.12 (two and one), 0.03 or less beyond; at zero
 // shift that shared noise draws every disparity towards 0. Ring 2 is left out when at least 7x7 views remain (F01
-// two-horses capture: BadPix 0.07 7.5 -> 4.9 %; Illum 2.4 -> 2.0 %), ring 1 with 5x5, none otherwise or on rendered
+// two-horses capture: BadPix 0.07 7.5 -> 4.9 %; Illum 2.5 -> 2.0 %), ring 1 with 5x5, none otherwise or on rendered
 // light fields.
 int ExcludedRingFor(const LightField& light_field);
 
