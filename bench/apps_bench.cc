@@ -1,6 +1,7 @@
 // Whole commands, timed end to end through the `lfsp` executable: the pipeline on the bundled sample and the
 // noise study (issue 8 targets).
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -54,8 +55,7 @@ LFSP_BENCH_CASE {
 
 // A scene name as part of a file name: hyphens become underscores.
 std::string Underscored(std::string name) {
-  for (char& character : name)
-    if (character == '-') character = '_';
+  std::replace(name.begin(), name.end(), '-', '_');
   return name;
 }
 

@@ -52,7 +52,7 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
                    "shifts; blurs by the cubic B-spline) | automatic: noise-matched on lenslet decodes and on views "
                    "noisier than 0.003, bilinear on clean rendered light fields")
       ->capture_default_str()
-      ->check(CLI::IsMember({"automatic", "auto", "bilinear", "noise-matched"}));
+      ->check(CLI::IsMember({"automatic", "bilinear", "noise-matched"}));
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

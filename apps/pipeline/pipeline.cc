@@ -176,11 +176,13 @@ nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const
             {"source", from_truth ? "ground truth" : estimate.range_source}}},
           {"depth_choices",
            {{"noise_sigma", estimate.noise_sigma},
+            {"fine_band_snr", estimate.fine_band_snr},
             {"presmooth_sigma", estimate.presmooth_sigma},
             {"occlusion_radius", estimate.occlusion_radius},
             {"sampler", depth::SamplerName(estimate.sampler)},
             {"excluded_ring", estimate.excluded_ring},
-            {"detail_weight", estimate.detail_weight}}}};
+            {"detail_weight", estimate.detail_weight},
+            {"channel_weights", estimate.channel_weights}}}};
 }
 
 // `--recolor`: the recolour stage on a copy of the light field (the report and the focal stack show the original),

@@ -161,7 +161,7 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const f
   }
 }
 
-// One view's cost at one label for one row, added to the tile's accumulators (see AccumulateRowCost).
+// Where one row's costs are added (see AccumulateRowCost).
 struct RowAccumulators {
   float* total;
   const float* in_half_a;
@@ -170,6 +170,7 @@ struct RowAccumulators {
   float* along;
 };
 
+// One view's cost at one label for one row, added to the tile's accumulators.
 template <int kC>
 void AddViewRow(bool noise_matched, const float* view, int width, int height, int y, float sx, float sy,
                 const float* centre_row, const TermWeights& terms, float* differences, float* mixed, float* costs,
@@ -306,7 +307,7 @@ std::string SamplerName(Sampler sampler) {
 
 Sampler SamplerFromString(const std::string& name) {
   for (const Sampler sampler : {Sampler::kAutomatic, Sampler::kBilinear, Sampler::kNoiseMatched})
-    if (name == SamplerName(sampler) || (name == "auto" && sampler == Sampler::kAutomatic)) return sampler;
+    if (name == SamplerName(sampler)) return sampler;
   throw Error("sampler '" + name + "': unknown (expected automatic, bilinear or noise-matched)");
 }
 
@@ -331,9 +332,6 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   const int width = shape.width;
   const int height = shape.height;
   const int labels = static_cast<int>(disparities.size());
-  if (!(options.detail_sigma > 0.0f) && !(options.colour_weight > 0.0f)) {
-    throw Error("depth: the cost needs the detail or the colour term");
-  }
   std::array<float, 3> channel = options.channel_weights;
   if (channel[0] < 0.0f) channel = {1.0f, 1.0f, 1.0f};
   const TermWeights terms{channel,
@@ -343,6 +341,10 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
                           options.detail_sigma > 0.0f ? options.detail_truncation : 0.0f,
                           options.detail_weight < 0.0f ? 1.0f : options.detail_weight};
   const bool with_detail = options.detail_sigma > 0.0f && terms.detail_weight > 0.0f;
+  if (!with_detail && !(options.colour_weight > 0.0f)) {
+    throw Error("depth: the cost needs the detail or the colour term, and both have no weight (" +
+                OptionName("colour_weight") + " 0, detail weight 0: give " + OptionName("detail_weight") + ")");
+  }
   const FeatureImages features = MakeFeatureImages(light_field, options, with_detail);
   const bool noise_matched = options.sampler == Sampler::kNoiseMatched;
   const std::vector<float> blurred_centre = noise_matched ? NoiseMatchedCentre(features, shape) : std::vector<float>();

@@ -70,8 +70,8 @@ double FineTextureShare(double fine_band_snr) {
 
 float DetailWeightFor(const cv::Mat& raw_centre, const cv::Mat& smoothed_centre, double presmooth_sigma,
                       bool decoded_from_sensor, double fine_band_snr, const CostOptions& options) {
-  // Unsmoothed views are clean ones (AutomaticPresmoothSigma), and a rendered light field's noise
-  // is white: their detail term stays whole.
+  // Unsmoothed views are clean ones (AutomaticPresmoothSigma), and a rendered light field's noise is white: their
+  // detail term stays whole.
   if (!(options.detail_sigma > 0.0f) || !(presmooth_sigma > 0.0) || !decoded_from_sensor) return 1.0f;
   const double share = FineTextureShare(fine_band_snr);
   if (share <= 0.0) return 0.0f;

@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
+#include "lfsp/depth/cost_volume.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/simulate/image_noise.h"
 #include "synthetic_light_field.h"
@@ -39,6 +41,77 @@ TEST(NoiseMatchedKernel, KeepsTheSumCentroidBlurAndNoiseGainAtEveryPosition) {
   const auto& c = kNoiseMatchedCentreKernel;
   EXPECT_NEAR(c[0] + c[1] + c[2], 1.0, 1e-6);
   EXPECT_NEAR(c[0] + c[2], 1.0 / 3.0, 1e-6);
+}
+
+// A view's channel c at integer pixel (x, y), taps beyond the border clamped to it (as the cost volume does).
+float Clamped(const LightField& light_field, ViewIndex view, int x, int y, int c) {
+  const LightFieldShape& shape = light_field.shape();
+  return light_field.at(view, std::clamp(y, 0, shape.height - 1), std::clamp(x, 0, shape.width - 1), c);
+}
+
+// The sampler written out tap by tap, for comparison with the cost volume's vectorised, border-split loops.
+float Sample(const LightField& light_field, ViewIndex view, float x, float y, int c, Sampler sampler) {
+  const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
+  const float ax = x - std::floor(x), ay = y - std::floor(y);
+  if (sampler == Sampler::kBilinear) {
+    return (1 - ax) * (1 - ay) * Clamped(light_field, view, ix, iy, c) +
+           ax * (1 - ay) * Clamped(light_field, view, ix + 1, iy, c) +
+           (1 - ax) * ay * Clamped(light_field, view, ix, iy + 1, c) +
+           ax * ay * Clamped(light_field, view, ix + 1, iy + 1, c);
+  }
+  const std::array<float, 4> wx = NoiseMatchedWeights(ax), wy = NoiseMatchedWeights(ay);
+  float sum = 0.0f;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) sum += wx[i] * wy[j] * Clamped(light_field, view, ix - 1 + i, iy - 1 + j, c);
+  return sum;
+}
+
+// The centre view as the sampler compares it: as it is (bilinear), or blurred by kNoiseMatchedCentreKernel.
+float Centre(const LightField& light_field, int x, int y, int c, Sampler sampler) {
+  const ViewIndex centre = light_field.shape().Centre();
+  if (sampler == Sampler::kBilinear) return light_field.at(centre, y, x, c);
+  float sum = 0.0f;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      sum += kNoiseMatchedCentreKernel[i] * kNoiseMatchedCentreKernel[j] *
+             Clamped(light_field, centre, x + i - 1, y + j - 1, c);
+  return sum;
+}
+
+// Both samplers against the tap-by-tap version on a light field smaller than their footprint, at shifts many times
+// its size in both directions and at fractions on either side of whole pixels: every border path is taken.
+TEST(NoiseMatchedKernel, CostVolumeSamplesLikeTheTapByTapSampler) {
+  LightField light_field(LightFieldShape{3, 3, 5, 3, 3});
+  std::mt19937 random(4);
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  for (std::size_t i = 0; i < light_field.size(); ++i) light_field.data()[i] = value(random);
+  const std::vector<float> disparities = {-7.3f, -1.0f, 0.4f, 0.999f, 6.9f};
+  CostOptions options;
+  options.detail_sigma = 0.0f;  // colour alone, untruncated, so the cost is the plain sum of differences
+  options.colour_truncation = 1e9f;
+  options.channel_weights = {1.0f, 1.0f, 1.0f};
+  options.excluded_ring = 0;
+  const LightFieldShape& shape = light_field.shape();
+  for (const Sampler sampler : {Sampler::kBilinear, Sampler::kNoiseMatched}) {
+    options.sampler = sampler;
+    const CostVolume cost = BuildCostVolume(light_field, disparities, options, nullptr);
+    for (int y = 0; y < shape.height; ++y)
+      for (int x = 0; x < shape.width; ++x)
+        for (std::size_t l = 0; l < disparities.size(); ++l) {
+          double expected = 0.0;
+          for (int v = 0; v < 3; ++v)
+            for (int u = 0; u < 3; ++u) {
+              if (u == 1 && v == 1) continue;
+              const float sx = x - (u - 1) * disparities[l], sy = y - (v - 1) * disparities[l];
+              for (int c = 0; c < 3; ++c)
+                expected +=
+                    std::abs(Sample(light_field, {u, v}, sx, sy, c, sampler) - Centre(light_field, x, y, c, sampler));
+            }
+          expected *= options.colour_weight / 8.0;
+          EXPECT_NEAR(cost.Curve(y, x)[l], expected, 1e-4)
+              << SamplerName(sampler) << " at (" << x << ", " << y << "), d = " << disparities[l];
+        }
+  }
 }
 
 // The median disparity of the background (outside the square and a margin around it) of a noisy shift scene whose

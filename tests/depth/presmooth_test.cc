@@ -1,5 +1,5 @@
-// The depth estimator's pre-smoothing: how much it chooses for a noise level, and what it buys on a noisy light field
-// with known disparity. (The noise estimate itself is tested in tests/core/noise_test.cc.)
+// The depth estimator's automatic choices for noisy views (pre-smoothing, sampler, excluded ring) and what they buy on
+// a noisy light field with known disparity. (The noise estimate itself is tested in tests/core/noise_test.cc.)
 
 #include "lfsp/depth/presmooth.h"
 
@@ -68,11 +68,17 @@ TEST(Presmooth, AutomaticChoicesFollowTheViewsNoiseAndSource) {
   EXPECT_EQ(AutomaticSampler(decoded, 0.0), Sampler::kNoiseMatched);
   EXPECT_EQ(ExcludedRingFor(rendered), 0);
   EXPECT_EQ(ExcludedRingFor(decoded), 2);
-  for (const int views : {7, 5, 3}) {
-    LightField central(LightFieldShape{views, views, 8, 8, 3});
+  const auto ring_for = [&](int nu, int nv) {
+    LightField central(LightFieldShape{nu, nv, 8, 8, 3});
     central.metadata = decoded.metadata;
-    EXPECT_EQ(ExcludedRingFor(central), views >= 7 ? 2 : views >= 5 ? 1 : 0) << views << "x" << views;
-  }
+    return ExcludedRingFor(central);
+  };
+  EXPECT_EQ(ring_for(7, 7), 2);
+  EXPECT_EQ(ring_for(6, 6), 1);
+  EXPECT_EQ(ring_for(5, 5), 1);
+  EXPECT_EQ(ring_for(9, 5), 1) << "the smaller side decides";
+  EXPECT_EQ(ring_for(4, 4), 0);
+  EXPECT_EQ(ring_for(3, 3), 0);
 }
 
 // The automatic detail weight: whole on unsmoothed views; on smoothed ones, low where the detail band holds little

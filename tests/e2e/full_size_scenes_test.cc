@@ -3,13 +3,15 @@
 // as a user runs it. Per scene and camera:
 //  - depth: BadPix 0.07 of the capture's pipeline at most 1.5 times the ideal's plus 1 point;
 //  - superpixels: the capture's LFSP self-similarity within 0.06 px of the ideal's (the chain from a capture is as
-//    view-consistent as from the ideal light field), and within kSelfSimilarityGap of its ground-truth reference;
+//    view-consistent as from the ideal light field), and within each case's self_similarity_gap of its ground-truth
+//    reference;
 //  - colour: in camera colour, the centre view's mean per channel (taken back to linear, over the truth) agree to
 //    5 %, and under 1 % of its samples are clipped at black.
-// The figures are printed; docs/DESIGN.md and BENCHMARKS.md keep them.
+// The figures are printed; README.md (*How close the chain ... comes*) and BENCHMARKS.md keep them.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -48,8 +50,7 @@ void PrintTo(const SceneCase& c, std::ostream* out) { *out << Describe(c); }
 // A test name: the scene, with its hyphen made an underscore.
 std::string TestName(const ::testing::TestParamInfo<SceneCase>& info) {
   std::string name = info.param.scene;
-  for (char& character : name)
-    if (character == '-') character = '_';
+  std::replace(name.begin(), name.end(), '-', '_');
   return name;
 }
 

@@ -89,7 +89,8 @@ struct CostOptions {
   // better on comb but 1.5 puts occluders at 23 %, so 2.5 keeps a margin.
   float along_edge_penalty = 2.5f;
   // Views within this many steps of the centre view (Chebyshev distance) are left out of the cost; < 0 =
-  // automatic (EstimateDepth: 1 for light fields decoded from a lenslet sensor, else 0). In a lenslet decode,
+  // automatic (EstimateDepth: ExcludedRingFor, 2 or 1 on light fields decoded from a lenslet sensor, else 0). In a
+  // lenslet decode,
   // neighbouring views are neighbouring sensor pixels of one micro-image, and demosaicking and the sub-pixel
   // lookup mix them: the centre view shares noise with its neighbours at zero shift, which draws every disparity
   // towards 0 (full-size F01 strips with sensor noise read 0.72x their disparity).
@@ -98,8 +99,9 @@ struct CostOptions {
   int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 
-// Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile (the
-// light field is read in place; only the detail images are made, once): each non-centre view is resampled at the
+// Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile from
+// one interleaved copy of the views' features (RGB, and the detail image when the detail term has weight; the centre
+// view's blurred too for the noise-matched sampler): each non-centre view is resampled at the
 // sub-pixel shift the label predicts (CostOptions::sampler) and compared with the centre view (see CostOptions).
 // Views are accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular
 // patch on one side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge

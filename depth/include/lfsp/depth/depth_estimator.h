@@ -29,8 +29,8 @@ struct DepthOptions {
   SgmOptions sgm;
   bool plane_fit = false;  // slanted-plane refinement of textureless pixels (see plane_fit.h)
   PlaneFitOptions plane;
-  // Gaussian smoothing of every view before matching, pixels: < 0 = chosen from the centre view's estimated noise
-  // (none on clean views, up to 2.5 px in low light), 0 = off.
+  // Gaussian smoothing of every view before matching, pixels: < 0 = automatic (AutomaticPresmoothSigma: 0.6 px on
+  // noisy views, none on clean ones), 0 = off.
   float presmooth_sigma = -1.0f;
   int median_radius = 3;       // weighted-median refinement window radius (0 = off)
   float median_sigma = 0.05f;  // colour scale of the weighted median's weights

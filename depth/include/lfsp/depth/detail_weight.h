@@ -14,11 +14,11 @@ cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma);
 
 // The automatic CostOptions::detail_weight: how far the detail term (the normalised high-pass grey image) can be
 // trusted on these views.
-//  - Views that are not presmoothed (clean ones) keep weight 1: on antinous a lower weight costs BadPix 0.07
-//    5.9 -> 13.5 %.
+//  - Views that are not presmoothed (clean ones) keep weight 1: on antinous a lower weight cost BadPix 0.07
+//    5.9 -> 13.5 % (measured with the method of then; 5.7 % today).
 //  - Rendered light fields with noise (not decoded from a sensor) keep weight 1 too: their noise is white, which the
-//    presmoothing is for. Antinous plus white noise of 0.005 (presmoothed 2.5 px): weight 0.10 (the decode rule
-//    below) BadPix 63.5 %, weight 1 37.6 %; noise 0.02: 70.6 -> 53.7 %.
+//    presmoothing is for. Antinous plus white noise of 0.005 (then presmoothed 2.5 px, bilinear): weight 0.10 (the
+//    decode rule below) BadPix 63.5 %, weight 1 37.6 %; noise 0.02: 70.6 -> 53.7 %.
 //  - Light fields decoded from a lenslet sensor: a Wiener-style ratio m^2 / (m^2 + (kDetailNoiseMargin * n)^2),
 //    where m is the median local RMS of the centre view's high-pass grey image after the presmoothing the cost sees
 //    and n is what white noise of the centre view's noise floor (EstimateNoiseFloor, before smoothing) leaves in that
@@ -32,7 +32,7 @@ cv::Mat DetailHighPass(const cv::Mat& rgb, double sigma);
 //    the term is left out: F01 BadPix 0.07 55.4 -> 33.2 %, noise-free F01 13.9 -> 5.9 %, Illum 11.3 -> 8.6 % (depth
 //    alone). The bundled 80x60 mini-Illum decode, whose texture reaches the pixel scale (fine_band_snr 10.4), keeps
 //    its weight (0.79 -> 0.69 at the old 1.5 px of presmoothing; without the term it read 94 % instead of 29 %;
-//    0.44 at today's 0.6 px, BadPix 0.07 19.8 %).
+//    0.44 at kNoisyViewsPresmooth's 0.6 px, BadPix 0.07 19.8 %).
 constexpr double kDetailNoiseMargin = 16.0;
 
 // How strong the unsmoothed centre view's detail band is against what white noise of its noise floor would leave

@@ -16,14 +16,18 @@ namespace lfsp::depth {
 // sums to 1, its centroid is a, its second moment about a is 1/3 (the blur of the cubic B-spline, whatever a), and
 // the sum of its squared weights (white noise's variance gain) is kNoiseMatchedGain. It is the cubic B-spline plus
 // the multiple of the third difference (-1, 3, -3, 1) that brings the B-spline's gain (0.50 at a = 0, 0.46 at
-// a = 1/2) down to the constant; the third difference leaves the sum and the first two moments unchanged.
+// a = 1/2) down to the constant; the third difference leaves the sum and the first two moments unchanged. Its third
+// moment is not zero: at a = 0 the weights are (0.184, 0.615, 0.218, -0.017) and just below a = 1 their mirror, so
+// the kernel jumps at whole-pixel shifts by about 0.017 times the image's third difference (zero at a = 1/2). On
+// the test plane of noise_matched_kernel_test.cc this leaves -0.996 where the truth is -1.
 constexpr float kNoiseMatchedGain = 1060.0f / 2304.0f;  // the cubic B-spline's gain at a = 1/2, its least
 
-// The four weights for a in [0, 1).
+// The four weights for a in [0, 1] (a = 1, which rounding can give for a tiny negative shift, is the kernel one
+// pixel on at a = 0, mirrored).
 std::array<float, 4> NoiseMatchedWeights(float a);
 
 // The centre view, which is compared at whole pixels, is blurred by the cubic B-spline at a = 0: (1, 4, 1) / 6,
-// second moment 1/3 like every resampled view, so a textured surface looks the same in both.
+// second moment 1/3 like every resampled view, so a textured surface looks the same in both up to the third moment.
 constexpr std::array<float, 3> kNoiseMatchedCentreKernel = {1.0f / 6.0f, 4.0f / 6.0f, 1.0f / 6.0f};
 
 }  // namespace lfsp::depth

@@ -22,7 +22,8 @@ Sampler AutomaticSampler(const LightField& light_field, double noise_sigma);
 // noise-matched sampler noise no longer biases the cost, so smoothing only trades noise for resolution, and little
 // is best at every noise level measured (BadPix 0.07, presmoothing 0 / 0.6 / 1.0 / 1.5 / 2.5 px):
 //  - HCI antinous plus white noise 0.005: 9.9 / 10.2 / 11.9 / 17.1 / 38.0 %; 0.01: 14.5 / 13.8 / 15.0 / 20.8 /
-//    45.5 %; 0.04: - / 35.5 / 36.2 / 38.7 / 58.1 % (bilinear at the old noise rule's 2.5 px: 36.7, 44.8, 60.7 %);
+//    45.5 %; 0.04: - / 35.5 / 36.2 / 38.7 / 58.1 % (the old rule, bilinear at about 2.4, 2.5 and 2.5 px, read
+//    36.7, 44.8 and 60.7 % at these three noise levels);
 //  - full-size F01 two-horses capture, central 7x7, ring 2 left out: 0.6 px 4.9 %, 0.8 px 5.0 %, 1.0 px 5.1 %;
 //    Illum, central 9x9: 0.6 px 2.0 %, 0.8 px 2.1 %.
 // Without any smoothing the detail term (kept whole on unsmoothed views) locks onto a decode's lattice residue.
