@@ -42,6 +42,9 @@ struct SceneCase {
   // Issue 12's rule for depth, 1.5 x ideal + 1 point; F01 two-horses misses it (4.79 % against 2.36 %: 4.54 %
   // allowed) and is pinned where it stands.
   double extra_badpix_allowed;
+  // The capture's BadPix as measured when this test was written plus 1.5 points: the rule above compares the capture
+  // with the ideal light field only, so a depth regression that hits both would pass it.
+  double badpix_ceiling;
 };
 
 std::string Describe(const SceneCase& c) { return std::string(c.camera) + " " + c.scene; }
@@ -116,22 +119,23 @@ TEST_P(FullSizeScene, CapturePipelineMatchesTheIdealLightFields) {
               from_ideal.self_similarity, from_capture.self_similarity_reference);
 
   EXPECT_LE(from_capture.badpix, 1.5 * from_ideal.badpix + 1.0 + c.extra_badpix_allowed) << what;
+  EXPECT_LE(from_capture.badpix, c.badpix_ceiling) << what;
   EXPECT_LE(from_capture.self_similarity, from_ideal.self_similarity + 0.06) << what;
   EXPECT_LE(from_capture.self_similarity - from_capture.self_similarity_reference, c.self_similarity_gap) << what;
   CheckCameraColour(ReadBundle(temp / "capture" / "segmentation.h5").light_field, ReadBundle(truth).light_field, what);
 }
 
 INSTANTIATE_TEST_SUITE_P(F01, FullSizeScene,
-                         ::testing::Values(SceneCase{"f01", "planes", 0.15, 0.0},
-                                           SceneCase{"f01", "spheres", 0.15, 0.0},
-                                           SceneCase{"f01", "occluders", 0.24, 0.0},
-                                           SceneCase{"f01", "two-horses", 0.15, 0.5}),
+                         ::testing::Values(SceneCase{"f01", "planes", 0.15, 0.0, 19.0},
+                                           SceneCase{"f01", "spheres", 0.15, 0.0, 27.9},
+                                           SceneCase{"f01", "occluders", 0.24, 0.0, 8.1},
+                                           SceneCase{"f01", "two-horses", 0.15, 0.5, 6.3}),
                          TestName);
 INSTANTIATE_TEST_SUITE_P(Illum, FullSizeScene,
-                         ::testing::Values(SceneCase{"illum", "planes", 0.15, 0.0},
-                                           SceneCase{"illum", "spheres", 0.2, 0.0},
-                                           SceneCase{"illum", "occluders", 0.22, 0.0},
-                                           SceneCase{"illum", "two-horses", 0.15, 0.0}),
+                         ::testing::Values(SceneCase{"illum", "planes", 0.15, 0.0, 18.8},
+                                           SceneCase{"illum", "spheres", 0.2, 0.0, 25.9},
+                                           SceneCase{"illum", "occluders", 0.22, 0.0, 6.0},
+                                           SceneCase{"illum", "two-horses", 0.15, 0.0, 3.5}),
                          TestName);
 
 }  // namespace
