@@ -18,9 +18,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/core.hpp>
 #include <string>
 
+#include "camera_colour.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/registration.h"
 #include "lfsp/core/view_crop.h"
@@ -33,6 +33,7 @@ namespace lfsp {
 namespace {
 
 namespace fs = std::filesystem;
+using lfsp::testing::CheckCameraColour;
 
 constexpr float kStripDisparity[7] = {-1.5f, -1.0f, -0.5f, 0.0f, 0.5f, 1.0f, 1.5f};
 
@@ -109,31 +110,6 @@ void CheckStripDisparities(LightField decoded, const std::string& what, double t
     std::printf("%s (%s): strip d = %+.1f reads %+.4f\n", what.c_str(), views.reason.c_str(), kStripDisparity[k], mean);
     EXPECT_NEAR(mean, kStripDisparity[k], tolerance) << what << " strip " << k;
   }
-}
-
-void CheckCameraColour(const LightField& camera, const LightField& truth, const std::string& what) {
-  const ViewIndex centre = camera.shape().Centre();
-  const cv::Mat decoded = camera.View(centre), ideal = truth.View(centre);
-  double decoded_sum[3] = {0, 0, 0}, truth_sum[3] = {0, 0, 0};
-  long clipped = 0;
-  for (int y = 0; y < decoded.rows; ++y)
-    for (int x = 0; x < decoded.cols; ++x) {
-      const auto& d = decoded.at<cv::Vec3f>(y, x);
-      const auto& t = ideal.at<cv::Vec3f>(y, x);
-      for (int c = 0; c < 3; ++c) {
-        decoded_sum[c] += SrgbToLinear(d[c]);
-        truth_sum[c] += t[c];
-        clipped += d[c] <= 0.0f ? 1 : 0;
-      }
-    }
-  double ratio[3];
-  for (int c = 0; c < 3; ++c) ratio[c] = decoded_sum[c] / truth_sum[c];
-  const double mean_ratio = (ratio[0] + ratio[1] + ratio[2]) / 3.0;
-  const double clipped_share = static_cast<double>(clipped) / (3.0 * static_cast<double>(decoded.total()));
-  std::printf("%s: camera colour / truth per channel %.4f %.4f %.4f, clipped at black %.4f %%\n", what.c_str(),
-              ratio[0], ratio[1], ratio[2], 100.0 * clipped_share);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(ratio[c] / mean_ratio, 1.0, 0.05) << what << " channel " << c;
-  EXPECT_LT(clipped_share, 0.01) << what;
 }
 
 void CheckCamera(const std::string& camera) {
