@@ -8,6 +8,7 @@
 
 #include "lfsp/calibrate/corners.h"
 #include "lfsp/core/error.h"
+#include "saddle_refinement.h"
 
 namespace lfsp::calibrate {
 namespace {
@@ -91,13 +92,15 @@ void TrimNearBorder(std::vector<cv::Point2d>& corners, int& corners_x, int& corn
   corners_y = y1 - y0 + 1;
 }
 
-// Sub-pixel refinement with a window well inside one square.
+// Sub-pixel refinement: cornerSubPix (a window well inside one square) brings the prediction to within a fraction
+// of a pixel, the saddle fit removes its pixel-grid bias (saddle_refinement.h).
 void RefineCorners(const cv::Mat& grey, std::vector<cv::Point2d>& corners, double square_px) {
   const int half = std::clamp(static_cast<int>(0.42 * square_px), 2, 8);
   std::vector<cv::Point2f> points(corners.begin(), corners.end());
   cv::cornerSubPix(grey, points, cv::Size(half, half), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 60, 1e-4));
   for (std::size_t n = 0; n < points.size(); ++n) corners[n] = points[n];
+  RefineCornersAtSaddles(grey, corners, SaddleSigma(square_px));
 }
 
 // RMS distance between `corners` and the homography image of `reference` that fits them best.

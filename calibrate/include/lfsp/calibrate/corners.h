@@ -5,8 +5,9 @@
 // The board is found once, with OpenCV's findChessboardCornersSB, in the brightest view nearest the centre of the
 // view grid. Its corners are put in a canonical order (below) and then followed from view to view, ring by ring
 // away from that view: each view's corners are predicted from its already-found neighbours (the board only shifts
-// by its disparity between views) and refined with cornerSubPix. So every view of a capture has the same corner
-// order by construction, and the slow full-image search runs once per capture instead of once per view.
+// by its disparity between views) and refined with cornerSubPix, then moved to the saddle point of the blurred view
+// (saddle_refinement.h; cornerSubPix alone is pulled towards the pixel grid). So every view of a capture has the same
+// corner order by construction, and the slow full-image search runs once per capture instead of once per view.
 //
 // Canonical order: corner (a, b) is stored at b * corners_x + a, with a increasing along the board direction that
 // points most to the right in the image and b increasing downwards (the ordering is never mirrored). A board with
