@@ -50,6 +50,12 @@ void AddSimulateArguments(CLI::App* command, SimulateArguments& arguments) {
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   command
+      ->add_option("--lens-samples", lib.capture.lens_samples,
+                   "Capture: rays per axis across each micro-lens's aperture (1 = through its centre only; 0 = "
+                   "automatic: 3 for --calibration, else 1)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  command
       ->add_option("--disparity-scale", lib.capture.disparity_scale,
                    "Capture: multiplies the scene disparities (pixels per decoded view step)")
       ->capture_default_str();

@@ -157,6 +157,28 @@ RawCapture EmptyCapture(const CameraModel& camera, const SensorSetup& s) {
   return raw;
 }
 
+// n x n points spread evenly over one micro-lens's aperture, as offsets from the lens centre in decoded pixels
+// (lenses are 1/cos 30 deg apart along a row, rows 1 apart). The points cover the brick-shaped cell (one lens pitch
+// by one row, a fundamental domain of the lattice) one per cell of an n x n grid, and no two share a column or a
+// row of the finer n^2 x n^2 grid (Chiu, Shirley and Wang's canonical multi-jittered layout, without the jitter): a
+// straight edge along either axis then reads in steps of 1/n^2 of a lens, not 1/n. Folding each point onto the
+// lattice point nearest to it moves it into the lens's own hexagonal (Voronoi) cell without changing the spread.
+std::vector<std::array<double, 2>> LensApertureOffsets(int n) {
+  const double pitch = 1.0 / kHalfSqrt3;
+  const std::array<std::array<double, 2>, 7> lattice{
+      {{0, 0}, {pitch, 0}, {-pitch, 0}, {0.5 * pitch, 1}, {-0.5 * pitch, 1}, {0.5 * pitch, -1}, {-0.5 * pitch, -1}}};
+  std::vector<std::array<double, 2>> offsets;
+  for (int b = 0; b < n; ++b)
+    for (int a = 0; a < n; ++a) {
+      const double x = ((a + (b + 0.5) / n) / n - 0.5) * pitch, y = (b + (a + 0.5) / n) / n - 0.5;
+      std::array<double, 2> nearest = lattice[0];
+      for (const auto& l : lattice)
+        if (std::hypot(x - l[0], y - l[1]) < std::hypot(x - nearest[0], y - nearest[1])) nearest = l;
+      offsets.push_back({x - nearest[0], y - nearest[1]});
+    }
+  return offsets;
+}
+
 }  // namespace
 
 double Modulation(const CameraModel& camera, const LensletLattice& lattice, double disc_radius, double x, double y,
@@ -168,6 +190,7 @@ double Modulation(const CameraModel& camera, const LensletLattice& lattice, doub
 
 RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const CaptureOptions& options) {
   if (options.supersampling < 1 || options.supersampling > 8) throw Error("capture: supersampling must be 1..8");
+  if (options.lens_samples < 0 || options.lens_samples > 8) throw Error("capture: lens samples must be 0..8");
   if (!(options.exposure > 0.0 && options.exposure <= 4.0)) throw Error("capture: exposure must be in (0, 4]");
   if (options.hot_pixels < 0) throw Error("capture: hot pixel count must be >= 0");
   const SensorSetup s = Setup(camera, camera.capture_setting);
@@ -176,7 +199,9 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
   const float max_offset = static_cast<float>(s.disc_radius / s.grid.view_step + 2.0);
   const RayTracer tracer(scene, s.grid.width, s.grid.height, options.disparity_scale, max_offset, Transfer::kLinear);
   const int k = options.supersampling;
-  const double inv_k2 = 1.0 / (k * k);
+  const std::vector<std::array<double, 2>> aperture =
+      LensApertureOffsets(options.lens_samples == 0 ? kDefaultLensSamples : options.lens_samples);
+  const double inv_rays = 1.0 / static_cast<double>(k * k * aperture.size());
   const double inv_step = 1.0 / s.grid.view_step;
   const double decoded_per_lens = 1.0 / kHalfSqrt3;
   const double cut = s.disc_radius + 3.0;  // beyond this the profile is < 1e-3 of its peak: skip tracing
@@ -199,14 +224,16 @@ RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const
           if (r > cut) continue;
           const double m = MicroLensProfile(r, s.disc_radius) * MainLensFalloff(camera, sx, sy);
           // The lens gives the spatial sample (decoded grid), the offset within its micro-image the view.
-          const auto px = static_cast<float>((i + 0.5 * s.lattice.Shift(j)) * decoded_per_lens);
-          const auto py = static_cast<float>(j);
+          const double lens_x = (i + 0.5 * s.lattice.Shift(j)) * decoded_per_lens, lens_y = j;
           const auto vs = static_cast<float>(along * inv_step), vt = static_cast<float>(across * inv_step);
-          const RayHit hit = tracer.Trace(px, py, vs, vt);
-          const Rgb scene_colour = tracer.Shade(hit, vs, vt);
-          sum += m * (to_sensor[0] * scene_colour[0] + to_sensor[1] * scene_colour[1] + to_sensor[2] * scene_colour[2]);
+          for (const auto& offset : aperture) {
+            const RayHit hit =
+                tracer.Trace(static_cast<float>(lens_x + offset[0]), static_cast<float>(lens_y + offset[1]), vs, vt);
+            const Rgb c = tracer.Shade(hit, vs, vt);
+            sum += m * (to_sensor[0] * c[0] + to_sensor[1] * c[1] + to_sensor[2] * c[2]);
+          }
         }
-      const double signal = options.exposure * s.response[static_cast<std::size_t>(channel)] * sum * inv_k2;
+      const double signal = options.exposure * s.response[static_cast<std::size_t>(channel)] * sum * inv_rays;
       row[x] = Digitise(
           camera, signal, camera.full_well, options.noise, options.seed,
           static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(raw.width) + static_cast<std::uint64_t>(x));

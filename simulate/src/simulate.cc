@@ -73,6 +73,7 @@ void WriteCalibrationSet(const SimulateOptions& options, const std::filesystem::
       const CameraModel camera = CameraPreset(options.camera);
       CaptureOptions capture = options.capture;
       capture.seed = options.seed + k;
+      if (capture.lens_samples == 0) capture.lens_samples = kCalibrationLensSamples;
       const RawCapture raw = RenderRawCapture(scene, camera, capture);
       const std::string capture_name = CaptureFileName(camera);
       decode::WriteLfpContainer(BuildCaptureContainer(camera, raw), out_dir / folder / capture_name);
