@@ -40,17 +40,18 @@ struct RawCapture {
 double Modulation(const CameraModel& camera, const LensletLattice& lattice, double disc_radius, double x, double y,
                   int i, int j);
 
-// Renders the raw capture by tracing, for each sensor pixel, rays through its micro-lens into the scene: lens (i, j)
-// gives the spatial position (decoded grid), the pixel's offset from the lens centre the view (s, t). A sensor
-// pixel behind a micro-lens receives the light of its direction through the lens's whole aperture, so the rays are
-// spread over the lens's hexagonal cell (lens_samples per axis): the views come out box-filtered by one lens, as a
-// real camera's are, not point-sampled (which left edges in steps of a lens and checkerboard corners 0.27 px off).
 // Scenes keep one ray per lens by default for now: with 2 x 2 rays (a full Illum raw in 14 s instead of 4 s) the
 // noisy full-size F01 strips of tests/e2e/full_size_test.cc at d = -1.5 and +1.5 read -1.529 and +1.520, past the
 // 0.02 px those tests allow (noise-free: -1.497, +1.497), a weakness of depth under noise on the smoother views that
 // is not yet understood. 3 x 3 rays cost 31 s per Illum raw, over issue 3's 15 s.
 constexpr int kDefaultLensSamples = 1;
 constexpr int kCalibrationLensSamples = 3;
+
+// Renders the raw capture by tracing, for each sensor pixel, rays through its micro-lens into the scene: lens (i, j)
+// gives the spatial position (decoded grid), the pixel's offset from the lens centre the view (s, t). A sensor
+// pixel behind a micro-lens receives the light of its direction through the lens's whole aperture, so the rays are
+// spread over the lens's hexagonal cell (lens_samples per axis): the views come out box-filtered by one lens, as a
+// real camera's are, not point-sampled (which left edges in steps of a lens and checkerboard corners 0.27 px off).
 // Deterministic for a seed (noise comes from a counter-based generator, independent of threads).
 RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const CaptureOptions& options);
 
