@@ -22,6 +22,13 @@ using lfsp::testing::LoadJson;
 using lfsp::testing::RunLfsp;
 using lfsp::testing::TempDir;
 
+// Where `lfsp simulate --calibration` puts pose k: calibration/pose_NN.
+fs::path PoseFolder(const fs::path& simulated, int k) {
+  char name[16];
+  std::snprintf(name, sizeof name, "pose_%02d", k);
+  return simulated / "calibration" / name;
+}
+
 double Norm(const nlohmann::json& v) {
   return std::sqrt(v[0].get<double>() * v[0].get<double>() + v[1].get<double>() * v[1].get<double>() +
                    v[2].get<double>() * v[2].get<double>());
@@ -36,7 +43,7 @@ TEST(DecodedCalibration, F01CheckerboardCapturesGiveTheTruePoses) {
   ASSERT_EQ(simulate.exit_status, 0) << simulate.err;
   std::vector<std::string> calibrate{"-q", "calibrate"};
   for (int k = 0; k < kPoses; ++k) {
-    const fs::path pose = simulated / "calibration" / ("pose_0" + std::to_string(k));
+    const fs::path pose = PoseFolder(simulated, k);
     const fs::path decoded = temp / ("pose_" + std::to_string(k) + ".h5");
     const auto decode = RunLfsp({"-q", "decode", (pose / "capture.lfp").string(), "--white-images",
                                  (simulated / "whites").string(), "--out", decoded.string()});
@@ -55,8 +62,7 @@ TEST(DecodedCalibration, F01CheckerboardCapturesGiveTheTruePoses) {
   double worst_distance = 0;
   for (int k = 0; k < kPoses; ++k) {
     // The calibration's board origin is the first inner corner in its canonical order, the truth's corner 0.
-    const nlohmann::json truth =
-        LoadJson(simulated / "calibration" / ("pose_0" + std::to_string(k)) / "ground_truth.json");
+    const nlohmann::json truth = LoadJson(PoseFolder(simulated, k) / "ground_truth.json");
     const double estimated = Norm(calibration.at("captures")[static_cast<std::size_t>(k)].at("translation_m"));
     const double true_distance = Norm(truth.at("corners")[0].at("camera_m"));
     worst_distance = std::max(worst_distance, std::abs(estimated / true_distance - 1.0));

@@ -85,6 +85,12 @@ bool FitPeak(const RawCapture& raw, const std::vector<double>& gain, int black, 
   return true;
 }
 
+// The colour (0 r, 1 g, 2 b) of sensor pixel (x, y)'s filter.
+int SensorChannel(const CameraModel& camera, int x, int y) {
+  const char c = camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))];
+  return c == 'r' ? 0 : c == 'g' ? 1 : 2;
+}
+
 void CheckMicroImageCentres(const CameraModel& camera, const RawCapture& raw, double max_error, double max_mean) {
   std::vector<double> gain(raw.pixels.size());
   for (int y = 0; y < raw.height; ++y)
@@ -160,9 +166,7 @@ TEST(RawCapture, RawAgreesWithDecodedGroundTruth) {
       const double xd = (i + 0.5 * raw.lattice.Shift(j)) / 0.8660254037844386;
       const int x0 = static_cast<int>(std::floor(xd));
       if (x0 + 1 >= shape.width) continue;
-      const int channel = camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'r'   ? 0
-                          : camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'g' ? 1
-                                                                                                 : 2;
+      const int channel = SensorChannel(camera, x, y);
       const double f = xd - x0;
       // The pixel's filter sees the scene through the inverse of the metadata's colour matrix.
       double expected = 0.0;
@@ -222,9 +226,7 @@ double EdgeFromLensCentres(const CameraModel& camera, const RawCapture& raw) {
         complete = false;
         break;
       }
-      const int channel = camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'r'   ? 0
-                          : camera.bayer[static_cast<std::size_t>((y & 1) * 2 + (x & 1))] == 'g' ? 1
-                                                                                                 : 2;
+      const int channel = SensorChannel(camera, x, y);
       const double white_signal = to_sensor[3 * static_cast<std::size_t>(channel)] +
                                   to_sensor[3 * static_cast<std::size_t>(channel) + 1] +
                                   to_sensor[3 * static_cast<std::size_t>(channel) + 2];
