@@ -31,7 +31,7 @@ struct CalibrateCommandOptions {
   std::string corners = "19x19";
   double square_size_mm = 3.61;
   double min_view_weight = 0.2;
-  int view_border = 0;
+  int view_border = -1;
   int min_captures = 3;
   int max_iterations = 100;
   bool allow_mixed_settings = false;
@@ -69,8 +69,8 @@ void RunCalibrate(const CalibrateCommandOptions& options) {
     try {
       corners.push_back(calibrate::DetectCaptureCorners(bundle.light_field, path, detection));
       const auto& c = corners.back();
-      spdlog::info("{}: board tracked in {} views ({} dark, {} failed)", path, c.views.size(), c.dark_views.size(),
-                   c.failed_views.size());
+      spdlog::info("{}: board tracked in {} views ({} dark, {} at the lenslet's edge, {} failed)", path, c.views.size(),
+                   c.dark_views.size(), c.edge_views.size(), c.failed_views.size());
     } catch (const Error& e) {
       spdlog::warn("{}", e.what());
       not_found.push_back(e.what());
@@ -145,8 +145,13 @@ void AddCalibrateCommand(CLI::App& app) {
       ->add_option("--min-view-weight", options->min_view_weight,
                    "Skip views whose mean weight (vignetting) is below this")
       ->capture_default_str();
-  command->add_option("--view-border", options->view_border, "Also skip views this close to the edge of the view grid")
-      ->capture_default_str();
+  command
+      ->add_option("--view-border", options->view_border,
+                   "Also skip views within N view steps of the lenslet's edge (a dark view or the edge of the view "
+                   "grid), whose rays the linear camera model fits worst; -1 = automatic: 1 (as LFToolbox) on light "
+                   "fields decoded from a lenslet capture, 0 on others")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 16));
   command->add_option("--min-captures", options->min_captures, "Fail with fewer usable captures than this")
       ->capture_default_str();
   command->add_option("--max-iterations", options->max_iterations, "Solver iterations per stage")

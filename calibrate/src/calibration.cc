@@ -196,6 +196,7 @@ Calibration Calibrate(const std::vector<CaptureCorners>& all_captures, const Cal
     if (static_cast<int>(c.views.size()) < options.min_views_per_capture) {
       result.rejected_captures.push_back(c.name + ": the board was tracked in only " + std::to_string(c.views.size()) +
                                          " views (" + std::to_string(c.dark_views.size()) + " dark, " +
+                                         std::to_string(c.edge_views.size()) + " at the lenslet's edge, " +
                                          std::to_string(c.failed_views.size()) + " failed), need " +
                                          std::to_string(options.min_views_per_capture));
       result.warnings.push_back("dropped " + result.rejected_captures.back());
@@ -290,6 +291,7 @@ Calibration Calibrate(const std::vector<CaptureCorners>& all_captures, const Cal
     pose.observations = count[c];
     for (const auto& view : captures[c].views) pose.views.push_back(view.view);
     pose.dark_views = captures[c].dark_views;
+    pose.edge_views = captures[c].edge_views;
     pose.failed_views = captures[c].failed_views;
     result.captures.push_back(std::move(pose));
   }

@@ -62,6 +62,7 @@ json CalibrationToJson(const Calibration& c) {
                         {"observations", p.observations},
                         {"views_used", ViewsToJson(p.views)},
                         {"dark_views", ViewsToJson(p.dark_views)},
+                        {"edge_views", ViewsToJson(p.edge_views)},
                         {"failed_views", ViewsToJson(p.failed_views)}});
   }
   json stages = json::array();

@@ -164,6 +164,36 @@ std::vector<double> ViewWeights(const LightField& light_field) {
   return weights;
 }
 
+int ViewBorderFor(const LightField& light_field, int requested) {
+  if (requested >= 0) return requested;
+  return DecodedFromSensor(light_field) ? 1 : 0;
+}
+
+namespace {
+
+// 1 for each view (row-major cam order) within `border` view steps (Euclidean) of a dark view or of a position
+// outside the view grid: the rim of the micro-lens image.
+std::vector<char> LensletEdgeViews(const LightFieldShape& shape, const std::vector<double>& weights,
+                                   double min_view_weight, int border) {
+  std::vector<char> at_edge(shape.Views(), 0);
+  const auto outside_lens = [&](int u, int v) {
+    if (u < 0 || v < 0 || u >= shape.nu || v >= shape.nv) return true;
+    return weights[static_cast<std::size_t>(CameraNumber({u, v}, shape.nu))] < min_view_weight;
+  };
+  for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    for (int dv = -border; dv <= border && !at_edge[static_cast<std::size_t>(cam)]; ++dv)
+      for (int du = -border; du <= border; ++du)
+        if (du * du + dv * dv <= border * border && outside_lens(view.u + du, view.v + dv)) {
+          at_edge[static_cast<std::size_t>(cam)] = 1;
+          break;
+        }
+  }
+  return at_edge;
+}
+
+}  // namespace
+
 bool CanonicalCornerOrder(std::vector<cv::Point2d>& corners, int corners_x, int corners_y) {
   if (corners.size() != static_cast<std::size_t>(corners_x * corners_y) || corners_x < 2 || corners_y < 2) return false;
   const auto at = [&](const std::vector<cv::Point2d>& grid, int nx, int a, int b) {
@@ -221,13 +251,15 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
 
   const int views = static_cast<int>(shape.Views());
   const std::vector<double> weights = ViewWeights(light_field);
+  const std::vector<char> at_edge =
+      LensletEdgeViews(shape, weights, options.min_view_weight, ViewBorderFor(light_field, options.view_border));
   std::vector<char> usable(static_cast<std::size_t>(views), 0);
   for (int cam = 0; cam < views; ++cam) {
     const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-    const bool border = view.u < options.view_border || view.v < options.view_border ||
-                        view.u >= shape.nu - options.view_border || view.v >= shape.nv - options.view_border;
-    if (weights[static_cast<std::size_t>(cam)] < options.min_view_weight || border) {
+    if (weights[static_cast<std::size_t>(cam)] < options.min_view_weight) {
       out.dark_views.push_back(view);
+    } else if (at_edge[static_cast<std::size_t>(cam)]) {
+      out.edge_views.push_back(view);
     } else {
       usable[static_cast<std::size_t>(cam)] = 1;
     }

@@ -1,5 +1,6 @@
-// Corner detection against the simulator's ground-truth corner positions: accuracy, dark views skipped, a
-// canonical order that survives a half turn of the board, and a clear error for a wrong grid size.
+// Corner detection against the simulator's ground-truth corner positions: accuracy, dark views skipped, views at the
+// lenslet's edge skipped on decoded captures, a canonical order that survives a half turn of the board, and a clear
+// error for a wrong grid size.
 
 #include "lfsp/calibrate/corners.h"
 
@@ -59,8 +60,10 @@ TEST(Corners, MatchGroundTruthInEveryUsableView) {
   const CaptureCorners found = DetectCaptureCorners(capture.light_field, "sim", Detection());
   const std::vector<double> weights = ViewWeights(capture.light_field);
 
-  // Every view is either used, dark, or failed; dark ones are below the threshold; bright ones are all found.
+  // Every view is either used, dark, or failed; dark ones are below the threshold; bright ones are all found. A
+  // rendered light field has no known lenslet edge, so none is skipped there.
   EXPECT_EQ(found.views.size() + found.dark_views.size() + found.failed_views.size(), 225u);
+  EXPECT_TRUE(found.edge_views.empty());
   for (const auto& v : found.dark_views) EXPECT_LT(weights[static_cast<std::size_t>(CameraNumber(v, 15))], 0.2);
   EXPECT_TRUE(found.failed_views.empty());
   EXPECT_GT(found.views.size(), 140u);
@@ -81,6 +84,36 @@ TEST(Corners, MatchGroundTruthInEveryUsableView) {
   std::printf("corner error over %zu corners: RMS %.4f px, max %.4f px\n", count, rms, worst);
   EXPECT_LT(rms, 0.1);  // the order matches the truth too: a wrong order would give errors of whole squares
   EXPECT_LT(worst, 0.5);
+}
+
+TEST(Corners, DecodedCapturesSkipTheViewsAtTheLensletsEdge) {
+  const auto camera = simulate::IllumCheckerboardCamera(0.5);
+  const auto pose = simulate::CalibrationPoses(camera, 4, 3, kCornersX, kCornersY)[1];
+  auto capture = simulate::RenderCheckerboardLightField(Options(pose));
+  capture.light_field.metadata["decode"] = nlohmann::json::object();  // as if decoded from a lenslet capture
+  const CaptureCorners found = DetectCaptureCorners(capture.light_field, "decoded", Detection());
+  const std::vector<double> weights = ViewWeights(capture.light_field);
+  const auto dark = [&](int u, int v) {
+    return u < 0 || v < 0 || u >= 15 || v >= 15 || weights[static_cast<std::size_t>(CameraNumber({u, v}, 15))] < 0.2;
+  };
+  // Automatic border 1: exactly the bright views with a dark view or the grid's edge one step away are skipped.
+  std::size_t expected_edge = 0;
+  for (int v = 0; v < 15; ++v)
+    for (int u = 0; u < 15; ++u)
+      if (!dark(u, v) && (dark(u - 1, v) || dark(u + 1, v) || dark(u, v - 1) || dark(u, v + 1))) ++expected_edge;
+  ASSERT_GT(expected_edge, 0u);
+  EXPECT_EQ(found.edge_views.size(), expected_edge);
+  for (const auto& e : found.edge_views) {
+    EXPECT_FALSE(dark(e.u, e.v));
+    EXPECT_TRUE(dark(e.u - 1, e.v) || dark(e.u + 1, e.v) || dark(e.u, e.v - 1) || dark(e.u, e.v + 1));
+    for (const auto& used : found.views) EXPECT_FALSE(used.view.u == e.u && used.view.v == e.v);
+  }
+  EXPECT_EQ(found.views.size() + found.dark_views.size() + found.edge_views.size() + found.failed_views.size(), 225u);
+
+  // An explicit border of 0 keeps them.
+  CornerDetectionOptions keep = Detection();
+  keep.view_border = 0;
+  EXPECT_TRUE(DetectCaptureCorners(capture.light_field, "decoded", keep).edge_views.empty());
 }
 
 TEST(Corners, OrderIsCanonicalAfterAHalfTurnOfTheBoard) {

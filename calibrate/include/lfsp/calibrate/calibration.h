@@ -49,6 +49,7 @@ struct CapturePose {
   int observations = 0;                 // corners used in the final stage
   std::vector<ViewIndex> views;         // views whose corners were used
   std::vector<ViewIndex> dark_views;    // skipped for low weight
+  std::vector<ViewIndex> edge_views;    // skipped at the lenslet's edge (CornerDetectionOptions::view_border)
   std::vector<ViewIndex> failed_views;  // bright enough, but the board was not tracked there
 };
 

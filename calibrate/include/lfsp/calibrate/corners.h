@@ -31,8 +31,15 @@ struct CornerDetectionOptions {
   // visible grid is taken (OpenCV's CALIB_CB_LARGER), less the rows and columns within one square of the view's
   // edge (parallax moves them out of other views); CaptureCorners records the size used. Corner indices then count
   // from the first visible corner, so each capture has its own board origin (its pose absorbs it).
-  double min_view_weight = 0.2;    // views whose mean weight is below this are skipped as dark (LFToolbox: 0.2)
-  int view_border = 0;             // also skip views this close to the edge of the view grid (LFToolbox default 1)
+  double min_view_weight = 0.2;  // views whose mean weight is below this are skipped as dark (LFToolbox: 0.2)
+  // Views within this many view steps of the lenslet's edge are skipped: of a dark view or of the edge of the view
+  // grid. Their pixels sit at the rim of the micro-lens image, where the main lens's aperture cuts off part of what
+  // the pixel would see, so they look through a point nearer the aperture's centre than the view's index says, which
+  // the linear ray model cannot follow. On full-size F01 decodes of a checkerboard (`lfsp simulate --calibration 8`)
+  // their corners sat 0.08-0.13 px towards the central view's, against 0.02-0.04 px rms and a mean below 0.01 px in
+  // the views inside. -1 = automatic: 1 (LFToolbox's LensletBorderSize) on light fields decoded from a lenslet
+  // capture, 0 on others (rendered light fields and views folders, whose edge is not known to be a lenslet's).
+  int view_border = -1;
   double max_grid_residual = 0.5;  // px: a view whose corners do not follow a homography of the reference view's
                                    // corners to this RMS is rejected as a failed detection
 };
@@ -47,10 +54,11 @@ struct CaptureCorners {
   LightFieldShape shape;
   int corners_x = 0;
   int corners_y = 0;
-  bool partial_board = false;      // found in partial-board mode: the grid size is this capture's own
-  ViewIndex reference;             // where the board was searched for
-  std::vector<ViewCorners> views;  // every view with a complete detection, same corner order
-  std::vector<ViewIndex> dark_views;
+  bool partial_board = false;         // found in partial-board mode: the grid size is this capture's own
+  ViewIndex reference;                // where the board was searched for
+  std::vector<ViewCorners> views;     // every view with a complete detection, same corner order
+  std::vector<ViewIndex> dark_views;  // skipped for low weight
+  std::vector<ViewIndex> edge_views;  // bright enough, but skipped within view_border of the lenslet's edge
   std::vector<ViewIndex> failed_views;
   // Camera facts from the light field's metadata (camera.model / serial / zoom_step / focus_step), if recorded.
   std::string camera_model;
@@ -67,6 +75,9 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
 // Mean weight of each view (row-major cam order): the recorded weights, or, without them, the view's mean
 // brightness relative to the brightest view.
 std::vector<double> ViewWeights(const LightField& light_field);
+
+// The view border CornerDetectionOptions::view_border asks for on this light field (resolving -1, automatic).
+int ViewBorderFor(const LightField& light_field, int requested);
 
 // The view as one grey float image (mean of the channels).
 cv::Mat GreyView(const LightField& light_field, ViewIndex view);
