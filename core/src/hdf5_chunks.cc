@@ -21,6 +21,28 @@ std::vector<std::uint8_t> Shuffled(const std::uint8_t* bytes, std::size_t elemen
   return out;
 }
 
+// One chunk as the zlib stream HDF5's deflate filter reads back. 8- and 16-bit data (decoded samples, weights,
+// labels) is deflated with run-length matching only (Z_RLE): their shuffled high-byte planes are long runs and their
+// low bytes mostly noise, where searching for distant matches buys little. On a full Illum pipeline's
+// segmentation.h5 (one view, level 1): samples 32 -> 16 ms for 84 -> 90 % of their size, weights 8.8 -> 5.7 ms for
+// 66 -> 71 %, labels unchanged at 6 %. float32 keeps the full search: its shuffled exponent and mantissa planes
+// repeat in longer patterns (the ideal two-horses bundle grew from 172 to 225 MB with runs only). Any zlib reader
+// inflates either.
+bool DeflateChunk(const std::vector<std::uint8_t>& in, std::size_t element_size, int level,
+                  std::vector<std::uint8_t>& out) {
+  z_stream stream{};
+  const int strategy = element_size <= 2 ? Z_RLE : Z_DEFAULT_STRATEGY;
+  if (deflateInit2(&stream, level, Z_DEFLATED, 15, 8, strategy) != Z_OK) return false;
+  out.resize(deflateBound(&stream, static_cast<uLong>(in.size())));
+  stream.next_in = const_cast<Bytef*>(in.data());
+  stream.avail_in = static_cast<uInt>(in.size());
+  stream.next_out = out.data();
+  stream.avail_out = static_cast<uInt>(out.size());
+  const bool finished = deflate(&stream, Z_FINISH) == Z_STREAM_END;
+  out.resize(stream.total_out);
+  return deflateEnd(&stream) == Z_OK && finished;
+}
+
 }  // namespace
 
 void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, std::size_t views, int nu,
@@ -38,11 +60,7 @@ void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, 
     for (std::size_t k = 0; k < count; ++k) {
       const std::vector<std::uint8_t> shuffled =
           Shuffled(bytes + (first + k) * chunk_bytes, chunk_elements, element_size);
-      uLongf size = compressBound(static_cast<uLong>(shuffled.size()));
-      compressed[k].resize(size);
-      failed[k] =
-          compress2(compressed[k].data(), &size, shuffled.data(), static_cast<uLong>(shuffled.size()), level) != Z_OK;
-      compressed[k].resize(size);
+      failed[k] = !DeflateChunk(shuffled, element_size, level, compressed[k]);
     }
     for (std::size_t k = 0; k < count; ++k) {
       if (failed[k]) ThrowFileError(name, "compressing a view failed");
