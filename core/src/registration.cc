@@ -4,6 +4,8 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/view_crop.h"
@@ -63,19 +65,30 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
                 ToString(truth.shape()) + ")");
   ViewRegistration result;
   const LightFieldShape& shape = truth.shape();
-  for (int v = 0; v < shape.nv; ++v)
-    for (int u = 0; u < shape.nu; ++u) {
-      ViewShift entry;
-      entry.view = {u, v};
-      entry.weight = MeanViewWeight(truth, entry.view);
-      if (entry.weight > min_weight) {
-        entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
-        entry.registered = true;
-        ++result.registered;
-        result.worst = std::max({result.worst, std::abs(entry.shift.dx), std::abs(entry.shift.dy)});
-      }
-      result.views.push_back(entry);
+  const int views = static_cast<int>(shape.Views());
+  result.views.resize(shape.Views());
+  // Views in parallel (each is independent); the error of the first view that fails is rethrown.
+  std::vector<std::string> failure(shape.Views());
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam) {
+    ViewShift& entry = result.views[static_cast<std::size_t>(cam)];
+    entry.view = ViewFromCameraNumber(cam, shape.nu);
+    entry.weight = MeanViewWeight(truth, entry.view);
+    if (entry.weight <= min_weight) continue;
+    try {
+      entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
+      entry.registered = true;
+    } catch (const Error& e) {
+      failure[static_cast<std::size_t>(cam)] = e.what();
     }
+  }
+  for (const std::string& message : failure)
+    if (!message.empty()) throw Error(message);
+  for (const ViewShift& entry : result.views) {
+    if (!entry.registered) continue;
+    ++result.registered;
+    result.worst = std::max({result.worst, std::abs(entry.shift.dx), std::abs(entry.shift.dy)});
+  }
   return result;
 }
 
