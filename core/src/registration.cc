@@ -4,7 +4,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
-#include <string>
+#include <exception>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -67,8 +67,8 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
   const LightFieldShape& shape = truth.shape();
   const int views = static_cast<int>(shape.Views());
   result.views.resize(shape.Views());
-  // Views in parallel (each is independent); the error of the first view that fails is rethrown.
-  std::vector<std::string> failure(shape.Views());
+  // Views in parallel (each is independent); the exception of the first view that failed is rethrown as it was.
+  std::vector<std::exception_ptr> failure(shape.Views());
 #pragma omp parallel for schedule(dynamic)
   for (int cam = 0; cam < views; ++cam) {
     ViewShift& entry = result.views[static_cast<std::size_t>(cam)];
@@ -78,12 +78,12 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
     try {
       entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
       entry.registered = true;
-    } catch (const Error& e) {
-      failure[static_cast<std::size_t>(cam)] = e.what();
+    } catch (...) {
+      failure[static_cast<std::size_t>(cam)] = std::current_exception();
     }
   }
-  for (const std::string& message : failure)
-    if (!message.empty()) throw Error(message);
+  for (const std::exception_ptr& exception : failure)
+    if (exception) std::rethrow_exception(exception);
   for (const ViewShift& entry : result.views) {
     if (!entry.registered) continue;
     ++result.registered;
