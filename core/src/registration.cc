@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
-#include <exception>
 #include <vector>
 
 #include "lfsp/core/error.h"
