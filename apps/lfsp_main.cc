@@ -44,7 +44,7 @@ std::string CommandLineOptionName(const std::string& api_name) {
 // Every stage allocates and frees buffers of hundreds of megabytes (views, cost volumes, labels). glibc serves
 // blocks above 32 MiB with their own mappings and unmaps them on free, so the kernel faults in and zeroes every page
 // again for the next stage: a full Illum `lfsp pipeline` took 1.68 million page faults. Kept in the heap (and the heap
-// trimmed only above 1 GiB of free space at its top) the freed memory is reused: 0.66 million faults, 17.9 -> 14.6 s
+// trimmed only above 1 GiB of free space at its top) the freed memory is reused: 0.66-0.88 million faults, 18 -> 15 s
 // wall on the 2-core machine of BENCHMARKS.md, for a peak of 2.69 instead of 2.31 GB. Only the executable does this;
 // the Python module leaves its host's allocator alone.
 void KeepLargeBuffersInTheHeap() {
