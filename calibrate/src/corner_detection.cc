@@ -164,12 +164,13 @@ std::vector<double> ViewWeights(const LightField& light_field) {
   return weights;
 }
 
+namespace {
+
+// The view border CornerDetectionOptions::view_border asks for on this light field (resolving -1, automatic).
 int ViewBorderFor(const LightField& light_field, int requested) {
   if (requested >= 0) return requested;
   return DecodedFromSensor(light_field) ? 1 : 0;
 }
-
-namespace {
 
 // 1 for each view (row-major cam order) within `border` view steps (Euclidean) of a dark view or of a position
 // outside the view grid: the rim of the micro-lens image.

@@ -76,9 +76,6 @@ CaptureCorners DetectCaptureCorners(const LightField& light_field, const std::st
 // brightness relative to the brightest view.
 std::vector<double> ViewWeights(const LightField& light_field);
 
-// The view border CornerDetectionOptions::view_border asks for on this light field (resolving -1, automatic).
-int ViewBorderFor(const LightField& light_field, int requested);
-
 // The view as one grey float image (mean of the channels).
 cv::Mat GreyView(const LightField& light_field, ViewIndex view);
 

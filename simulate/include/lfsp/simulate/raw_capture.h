@@ -43,7 +43,8 @@ double Modulation(const CameraModel& camera, const LensletLattice& lattice, doub
 // Scenes keep one ray per lens by default for now: with 2 x 2 rays (a full Illum raw in 14 s instead of 4 s) the
 // noisy full-size F01 strips of tests/e2e/full_size_test.cc at d = -1.5 and +1.5 read -1.529 and +1.520, past the
 // 0.02 px those tests allow (noise-free: -1.497, +1.497), a weakness of depth under noise on the smoother views that
-// is not yet understood. 3 x 3 rays cost 31 s per Illum raw, over issue 3's 15 s.
+// arises in the semi-global aggregation and is not yet understood (BENCHMARKS.md, sixteenth session). 3 x 3 rays cost
+// 31 s per Illum raw, over issue 3's 15 s.
 constexpr int kDefaultLensSamples = 1;
 constexpr int kCalibrationLensSamples = 3;
 
