@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../core/fuzz/fuzz_file.h"
 #include "fuzz_target.h"
 #include "lfsp/core/error.h"
 #include "lfsp/decode/container_info.h"
@@ -18,7 +19,11 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path WorkFolder() {
-  static const fs::path folder = fs::temp_directory_path() / ("lfsp-fuzz-info-" + std::to_string(getpid()));
+  static const fs::path folder = [] {
+    const fs::path path = fs::temp_directory_path() / ("lfsp-fuzz-info-" + std::to_string(getpid()));
+    RemoveAtExit(path);
+    return path;
+  }();
   return folder;
 }
 
