@@ -35,8 +35,13 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
                    "(sees into gaps between parallel occluders, e.g. a comb's teeth); 0 = off")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--p1", method.sgm.p1, "SGM penalty for a one-label step")->capture_default_str();
-  command->add_option("--p2", method.sgm.p2, "SGM penalty for a larger jump (lowered across colour edges)")
+  command
+      ->add_option("--p1", method.sgm.p1,
+                   "SGM penalty for a one-label step, in units of the default cost; scaled with the cost's range "
+                   "(x0.42 when the automatic detail weight leaves the detail term out of a lenslet decode)")
+      ->capture_default_str();
+  command
+      ->add_option("--p2", method.sgm.p2, "SGM penalty for a larger jump (lowered across colour edges), scaled as --p1")
       ->capture_default_str();
   command
       ->add_option("--excluded-ring", method.cost.excluded_ring,

@@ -182,7 +182,8 @@ nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const
             {"sampler", depth::SamplerName(estimate.sampler)},
             {"excluded_ring", estimate.excluded_ring},
             {"detail_weight", estimate.detail_weight},
-            {"channel_weights", estimate.channel_weights}}}};
+            {"channel_weights", estimate.channel_weights},
+            {"sgm_penalties", {{"p1", estimate.sgm.p1}, {"p2", estimate.sgm.p2}}}}}};
 }
 
 // `--recolor`: the recolour stage on a copy of the light field (the report and the focal stack show the original),

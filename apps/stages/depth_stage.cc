@@ -32,6 +32,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["excluded_ring"] = estimate.excluded_ring;
   summary["detail_weight"] = estimate.detail_weight;
   summary["channel_weights"] = estimate.channel_weights;
+  summary["sgm_penalties"] = {{"p1", estimate.sgm.p1}, {"p2", estimate.sgm.p2}};
   const std::optional<DisparityMap>& truth = bundle.disparity;
   if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
     const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(estimate.disparity, *truth);

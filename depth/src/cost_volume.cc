@@ -325,6 +325,12 @@ std::vector<float> LabelDisparities(float min, float max, int count) {
   return disparities;
 }
 
+float CostRange(const CostOptions& options) {
+  const float detail_weight = options.detail_weight < 0.0f ? 1.0f : options.detail_weight;
+  const float detail = options.detail_sigma > 0.0f ? detail_weight * options.detail_truncation : 0.0f;
+  return options.colour_weight * options.colour_truncation + detail;
+}
+
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
                            const CostOptions& options, const OcclusionMap* occlusion) {
   CheckInput(light_field, disparities, occlusion);

@@ -100,6 +100,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   result.detail_weight = cost_options.detail_weight;
   if (cost_options.channel_weights[0] < 0.0f) cost_options.channel_weights = ChannelWeightsForNoise(channel_noise);
   result.channel_weights = cost_options.channel_weights;
+  result.sgm = PenaltiesForCost(options.sgm, cost_options);
   CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
   lap("cost_volume");
   if (options.aggregation_radius > 0) {
@@ -108,7 +109,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   }
   CostVolume raw_cost;  // kept only for the plane fit's data support
   if (options.regularise) {
-    CostVolume aggregated = AggregateSemiGlobal(cost, centre, options.sgm);
+    CostVolume aggregated = AggregateSemiGlobal(cost, centre, result.sgm);
     if (options.plane_fit) raw_cost = std::move(cost);
     cost = std::move(aggregated);
     lap("semi_global");

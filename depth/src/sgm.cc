@@ -93,6 +93,14 @@ void AggregateDirection(const CostVolume& cost, const PenaltyModel& penalties, i
 
 }  // namespace
 
+SgmOptions PenaltiesForCost(const SgmOptions& options, const CostOptions& cost) {
+  const float scale = CostRange(cost) / CostRange(CostOptions());
+  SgmOptions scaled = options;
+  scaled.p1 *= scale;
+  scaled.p2 *= scale;
+  return scaled;
+}
+
 CostVolume AggregateSemiGlobal(const CostVolume& cost, const cv::Mat& guide, const SgmOptions& options) {
   if (guide.type() != CV_32FC3 || guide.rows != cost.height() || guide.cols != cost.width()) {
     throw Error("semi-global aggregation: the guide must be a float RGB image of the cost volume's size");

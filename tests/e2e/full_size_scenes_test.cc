@@ -34,13 +34,13 @@ using lfsp::testing::TempDir;
 struct SceneCase {
   const char* camera;
   const char* scene;
-  // Issue 12 asks for 0.15 px between the capture's self-similarity and its reference. That holds on planes and
-  // two-horses; next to thin occluders and on the curved spheres LFSP itself is further off, on the ideal light
-  // field too (measured, capture / ideal minus reference: F01 occluders 0.21 / 0.17, Illum occluders 0.19 / 0.12,
-  // Illum spheres 0.17 / 0.16), which is issue 19's work. Those cases are pinned where they stand.
+  // Issue 12 asks for 0.15 px between the capture's self-similarity and its reference. That holds on planes,
+  // spheres and two-horses; next to thin occluders LFSP itself is further off, on the ideal light field too
+  // (measured, capture / ideal minus reference: F01 occluders 0.18 / 0.17, Illum occluders 0.157 / 0.12), which is
+  // issue 19's work. Those cases are pinned 0.03 px above where they stand.
   double self_similarity_gap;
-  // Issue 12's rule for depth, 1.5 x ideal + 1 point; F01 two-horses misses it (4.79 % against 2.36 %: 4.54 %
-  // allowed) and is pinned where it stands.
+  // Issue 12's rule for depth is 1.5 x ideal + 1 point; this much more is allowed (every case meets the rule since
+  // the SGM penalties follow the cost's range: F01 two-horses 4.79 -> 3.70 % against 4.54 % allowed).
   double extra_badpix_allowed;
   // The capture's BadPix as measured when this test was written plus 1.5 points: the rule above compares the capture
   // with the ideal light field only, so a depth regression that hits both would pass it.
@@ -99,16 +99,16 @@ TEST_P(FullSizeScene, CapturePipelineMatchesTheIdealLightFields) {
 }
 
 INSTANTIATE_TEST_SUITE_P(F01, FullSizeScene,
-                         ::testing::Values(SceneCase{"f01", "planes", 0.15, 0.0, 19.0},
-                                           SceneCase{"f01", "spheres", 0.15, 0.0, 27.9},
-                                           SceneCase{"f01", "occluders", 0.24, 0.0, 8.1},
-                                           SceneCase{"f01", "two-horses", 0.15, 0.5, 6.3}),
+                         ::testing::Values(SceneCase{"f01", "planes", 0.15, 0.0, 20.0},
+                                           SceneCase{"f01", "spheres", 0.15, 0.0, 24.8},
+                                           SceneCase{"f01", "occluders", 0.21, 0.0, 8.9},
+                                           SceneCase{"f01", "two-horses", 0.15, 0.0, 5.2}),
                          TestName);
 INSTANTIATE_TEST_SUITE_P(Illum, FullSizeScene,
-                         ::testing::Values(SceneCase{"illum", "planes", 0.15, 0.0, 18.8},
-                                           SceneCase{"illum", "spheres", 0.2, 0.0, 25.9},
-                                           SceneCase{"illum", "occluders", 0.22, 0.0, 6.0},
-                                           SceneCase{"illum", "two-horses", 0.15, 0.0, 3.5}),
+                         ::testing::Values(SceneCase{"illum", "planes", 0.15, 0.0, 17.9},
+                                           SceneCase{"illum", "spheres", 0.15, 0.0, 24.7},
+                                           SceneCase{"illum", "occluders", 0.19, 0.0, 6.2},
+                                           SceneCase{"illum", "two-horses", 0.15, 0.0, 3.3}),
                          TestName);
 
 }  // namespace

@@ -76,6 +76,9 @@ async function canvasPixels(page) {
 // slider, the frame with every view, 'focus-full', which follows the first); returns the slider-to-frame times the
 // page measured: the frames of source `id`, or all of them with `allSources`.
 async function stepSlider(page, id, steps, allSources = false) {
+  // A change still waiting for its frame (the click that selected a superpixel) would absorb the first press: one
+  // frame draws both and is counted as the earlier change's, so the count below would stay one short.
+  await nextFrame(page);
   await page.focus(`#${id}`);
   const before = await page.evaluate(() => window.lfspStats.frames.length);
   const last = id === 'focus' ? 'focus-full' : id;
@@ -92,6 +95,7 @@ async function stepSlider(page, id, steps, allSources = false) {
 // Drags the slider's thumb with the mouse from its middle, `steps` moves of 8 px, waiting for the frame of each,
 // then lets go; returns the frames (sources `id` while dragging, `id`-release after).
 async function dragSlider(page, id, steps) {
+  await nextFrame(page);  // as in stepSlider: no earlier change left to absorb the first move
   const box = await page.$eval(`#${id}`, (slider) => slider.getBoundingClientRect().toJSON());
   const y = box.top + box.height / 2;
   let x = box.left + box.width / 2;

@@ -99,6 +99,11 @@ struct CostOptions {
   int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 
+// The largest cost one view can add (both terms at their truncation): colour_weight x colour_truncation, plus
+// detail_weight x detail_truncation when there is a detail term (an automatic detail weight counts as 1, as in
+// BuildCostVolume). The default options give 0.86.
+float CostRange(const CostOptions& options);
+
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile from
 // one interleaved copy of the views' features (RGB, and the detail image when the detail term has weight; the centre
 // view's blurred too for the noise-matched sampler): each non-centre view is resampled at the

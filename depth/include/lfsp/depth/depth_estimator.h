@@ -50,7 +50,8 @@ struct DepthResult {
   int excluded_ring = 0;       // views this close to the centre left out of the cost (after the automatic choice)
   float detail_weight = 1.0f;  // weight of the cost's detail term (after the automatic choice)
   std::array<float, 3> channel_weights{1.0f, 1.0f, 1.0f};  // of |dR|, |dG|, |dB| (after the automatic choice)
-  nlohmann::json timings;                                  // seconds per step
+  SgmOptions sgm;          // the semi-global penalties used (PenaltiesForCost: scaled to the cost's range)
+  nlohmann::json timings;  // seconds per step
 };
 
 // The disparity range to use: the options' if given, else the metadata's, else estimated from the views
