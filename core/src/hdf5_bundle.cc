@@ -14,6 +14,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/sample_levels.h"
 
 namespace lfsp {
 namespace fs = std::filesystem;
@@ -199,8 +200,7 @@ template <typename T>
 std::vector<T> Quantise(const float* values, std::size_t count, float scale) {
   std::vector<T> out(count);
 #pragma omp parallel for
-  for (std::size_t i = 0; i < count; ++i)
-    out[i] = static_cast<T>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * scale));
+  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<T>(SampleLevel(values[i], scale));
   return out;
 }
 
@@ -320,8 +320,7 @@ void RoundToStoredPrecision(LightField& light_field, SampleStorage storage) {
   const float scale = storage == SampleStorage::kUint16 ? 65535.0f : 255.0f;
   const auto round = [scale](float* values, std::size_t count) {
 #pragma omp parallel for
-    for (std::size_t i = 0; i < count; ++i)
-      values[i] = static_cast<float>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * scale)) / scale;
+    for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<float>(SampleLevel(values[i], scale)) / scale;
   };
   round(light_field.data(), light_field.size());
   // Weights are stored as 16-bit only beside 16-bit samples (else as float32).

@@ -19,6 +19,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/file_names.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/sample_levels.h"
 
 namespace lfsp {
 namespace {
@@ -80,7 +81,7 @@ cv::Mat QuantisedForStorage(const cv::Mat& image, OIIO::TypeDesc storage) {
   const std::size_t count = image.total() * static_cast<std::size_t>(image.channels());
   const float* in = image.ptr<float>();
   for (std::size_t i = 0; i < count; ++i) {
-    const long level = std::lround(std::clamp(in[i], 0.0f, 1.0f) * scale);
+    const std::uint32_t level = SampleLevel(in[i], scale);
     if (eight) {
       quantised.ptr<std::uint8_t>()[i] = static_cast<std::uint8_t>(level);
     } else {

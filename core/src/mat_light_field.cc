@@ -15,6 +15,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/sample_levels.h"
 #include "mat5_structure.h"
 
 namespace lfsp {
@@ -206,7 +207,7 @@ void WriteMatLightField(const LightField& light_field, const fs::path& path) {
   const std::size_t plane = nv * nu * h * w;
   std::vector<std::uint16_t> data(plane * 4);
   const auto quantise = [](float value) {
-    return static_cast<std::uint16_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 65535.0f));
+    return static_cast<std::uint16_t>(SampleLevel(value, 65535.0f));
   };
   const int rows = shape.nv * shape.nu * shape.height;
 #pragma omp parallel for schedule(static)
