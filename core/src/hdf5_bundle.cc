@@ -41,20 +41,26 @@ std::string DimsText(const std::vector<hsize_t>& dims) {
 // Reads a numeric dataset of any integer or float type into floats: unsigned 8/16-bit samples are scaled to [0, 1]
 // (the HCI files store uint8 views), floats are taken as they are.
 void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, std::size_t count, const std::string& where) {
+  // Datasets of one view per chunk (what WriteBundle writes) are inflated in parallel; others through HDF5.
+  const auto read = [&](void* values, const H5::PredType& type) {
+    if (!ReadViewChunks(dataset.getId(), type.getId(), values, count, where)) dataset.read(values, type);
+  };
   const H5T_class_t type_class = dataset.getTypeClass();
   if (type_class == H5T_FLOAT) {
-    dataset.read(destination, H5::PredType::NATIVE_FLOAT);
+    read(destination, H5::PredType::NATIVE_FLOAT);
     return;
   }
   if (type_class != H5T_INTEGER) ThrowFileError(where, "samples are neither integer nor float");
   const std::size_t size = dataset.getDataType().getSize();
   if (size == 1) {
     std::vector<std::uint8_t> raw(count);
-    dataset.read(raw.data(), H5::PredType::NATIVE_UINT8);
+    read(raw.data(), H5::PredType::NATIVE_UINT8);
+#pragma omp parallel for
     for (std::size_t i = 0; i < count; ++i) destination[i] = static_cast<float>(raw[i]) / 255.0f;
   } else if (size == 2) {
     std::vector<std::uint16_t> raw(count);
-    dataset.read(raw.data(), H5::PredType::NATIVE_UINT16);
+    read(raw.data(), H5::PredType::NATIVE_UINT16);
+#pragma omp parallel for
     for (std::size_t i = 0; i < count; ++i) destination[i] = static_cast<float>(raw[i]) / 65535.0f;
   } else {
     ThrowFileError(where, "unsupported integer sample size of " + std::to_string(size) + " bytes");

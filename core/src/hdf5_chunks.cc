@@ -43,7 +43,99 @@ bool DeflateChunk(const std::vector<std::uint8_t>& in, std::size_t element_size,
   return deflateEnd(&stream) == Z_OK && finished;
 }
 
+// Undoes Shuffled: byte plane b of `planes` holds byte b of every element.
+void Unshuffle(const std::uint8_t* planes, std::size_t elements, std::size_t element_size, std::uint8_t* bytes) {
+  for (std::size_t b = 0; b < element_size; ++b) {
+    const std::uint8_t* plane = planes + b * elements;
+    for (std::size_t i = 0; i < elements; ++i) bytes[i * element_size + b] = plane[i];
+  }
+}
+
+// Inflates one zlib stream into exactly out.size() bytes; false if it is corrupt, shorter or longer.
+bool InflateChunk(const std::vector<std::uint8_t>& in, std::vector<std::uint8_t>& out) {
+  z_stream stream{};
+  if (inflateInit(&stream) != Z_OK) return false;
+  stream.next_in = const_cast<Bytef*>(in.data());
+  stream.avail_in = static_cast<uInt>(in.size());
+  stream.next_out = out.data();
+  stream.avail_out = static_cast<uInt>(out.size());
+  const bool finished = inflate(&stream, Z_FINISH) == Z_STREAM_END && stream.total_out == out.size();
+  return inflateEnd(&stream) == Z_OK && finished;
+}
+
+// True if `dataset` is stored as WriteViewChunks writes it: chunks of one view ([1][1][...] over [nv][nu][...]),
+// filtered by shuffle then deflate, elements of `memory_type`.
+bool StoredOneViewPerChunk(hid_t dataset, hid_t memory_type, const std::vector<hsize_t>& dims) {
+  const hid_t type = H5Dget_type(dataset);
+  const bool same_type = type >= 0 && H5Tequal(type, memory_type) > 0;
+  if (type >= 0) H5Tclose(type);
+  if (!same_type || dims.size() < 3) return false;
+  const hid_t properties = H5Dget_create_plist(dataset);
+  if (properties < 0) return false;
+  std::vector<hsize_t> chunk(dims.size(), 0);
+  bool layout = H5Pget_layout(properties) == H5D_CHUNKED &&
+                H5Pget_chunk(properties, static_cast<int>(chunk.size()), chunk.data()) == static_cast<int>(dims.size());
+  layout = layout && chunk[0] == 1 && chunk[1] == 1 && std::equal(chunk.begin() + 2, chunk.end(), dims.begin() + 2);
+  layout = layout && H5Pget_nfilters(properties) == 2;
+  for (unsigned i = 0; layout && i < 2; ++i) {
+    unsigned flags = 0;
+    std::size_t values = 0;
+    const H5Z_filter_t filter = H5Pget_filter2(properties, i, &flags, &values, nullptr, 0, nullptr, nullptr);
+    layout = filter == (i == 0 ? H5Z_FILTER_SHUFFLE : H5Z_FILTER_DEFLATE);
+  }
+  H5Pclose(properties);
+  return layout;
+}
+
 }  // namespace
+
+bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name) {
+  const hid_t space = H5Dget_space(dataset);
+  if (space < 0) return false;
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  const bool read_dims = rank > 0 && H5Sget_simple_extent_dims(space, dims.data(), nullptr) == rank;
+  H5Sclose(space);
+  if (!read_dims || !StoredOneViewPerChunk(dataset, memory_type, dims)) return false;
+  std::size_t chunk_elements = 1;
+  for (std::size_t i = 2; i < dims.size(); ++i) chunk_elements *= static_cast<std::size_t>(dims[i]);
+  const std::size_t views = static_cast<std::size_t>(dims[0] * dims[1]);
+  if (views * chunk_elements != count) return false;
+  const std::size_t element_size = H5Tget_size(memory_type);
+  const std::size_t chunk_bytes = chunk_elements * element_size;
+  auto* bytes = static_cast<std::uint8_t*>(destination);
+  // Read a batch of raw chunks on one thread (HDF5 is not thread-safe), then inflate them in parallel: memory stays
+  // bounded by a batch of compressed chunks, each no larger than the file holds.
+  const std::size_t batch = 16;
+  std::vector<std::vector<std::uint8_t>> raw(batch);
+  std::vector<int> failed(batch, 0);
+  for (std::size_t first = 0; first < views; first += batch) {
+    const std::size_t count_in_batch = std::min(batch, views - first);
+    for (std::size_t k = 0; k < count_in_batch; ++k) {
+      std::vector<hsize_t> offset(dims.size(), 0);
+      offset[0] = static_cast<hsize_t>((first + k) / dims[1]);
+      offset[1] = static_cast<hsize_t>((first + k) % dims[1]);
+      hsize_t stored = 0;
+      if (H5Dget_chunk_storage_size(dataset, offset.data(), &stored) < 0 || stored == 0) return false;
+      raw[k].resize(static_cast<std::size_t>(stored));
+      std::uint32_t filter_mask = 0;
+      if (H5Dread_chunk(dataset, H5P_DEFAULT, offset.data(), &filter_mask, raw[k].data()) < 0)
+        ThrowFileError(name, "reading the chunk of view " + std::to_string(first + k) + " failed");
+      if (filter_mask != 0) return false;  // a filter was skipped for this chunk: HDF5's own read knows what to do
+    }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < count_in_batch; ++k) {
+      std::vector<std::uint8_t> planes(chunk_bytes);
+      failed[k] = !InflateChunk(raw[k], planes);
+      if (!failed[k]) Unshuffle(planes.data(), chunk_elements, element_size, bytes + (first + k) * chunk_bytes);
+    }
+    for (std::size_t k = 0; k < count_in_batch; ++k) {
+      if (failed[k])
+        ThrowFileError(name, "the chunk of view " + std::to_string(first + k) + " does not inflate to its size");
+    }
+  }
+  return true;
+}
 
 void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, std::size_t views, int nu,
                      std::size_t chunk_elements, int rank, int level, const std::string& name) {

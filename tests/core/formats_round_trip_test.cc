@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <thread>
@@ -185,6 +186,30 @@ TEST(Hdf5Bundle, CompactBundlesReadBackWhatWasWritten) {
   const Bundle read = ReadBundle(exact);
   for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
     ASSERT_EQ(read.light_field.data()[i], bundle.light_field.data()[i]);
+}
+
+// Compressed bundles are inflated view by view in parallel (ReadViewChunks); a damaged chunk must still end in a
+// one-line error that names the file, never in garbage samples or a crash.
+TEST(Hdf5Bundle, ADamagedViewChunkIsAnErrorNamingTheFile) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(16, 3);
+  BundleWriteOptions options;
+  options.compression_level = 1;
+  const std::filesystem::path path = temp / "damaged.h5";
+  WriteBundle(bundle, path, options);
+  ExpectSameSamples(ReadBundle(path).light_field, bundle.light_field);  // the parallel path reads it back exactly
+  std::string bytes = lfsp::testing::ReadBytes(path);
+  // The 25 compressed views fill most of the file; overwrite a run in the middle of them.
+  for (std::size_t i = bytes.size() / 2; i < bytes.size() / 2 + 64; ++i) bytes[i] = static_cast<char>(i * 37);
+  lfsp::testing::WriteBytes(path, bytes);
+  try {
+    (void)ReadBundle(path);
+    FAIL() << "a damaged chunk was read without an error";
+  } catch (const Error& error) {
+    std::printf("damaged chunk: %s\n", error.what());
+    EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
+  }
 }
 
 TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
