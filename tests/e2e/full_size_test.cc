@@ -3,7 +3,11 @@
 // lenslet model on the whole Illum (7728x5368) and F01 (3280x3280) sensors, noise-free and with shot and read
 // noise. Asserts, per capture:
 //  - geometry: every well-lit view (mean weight > 0.6) of the decoded capture registers against the ideal view of
-//    the same (u, v) to 0.05 px;
+//    the same (u, v) to 0.05 px. Issue 12 asks this of every view above 0.5; there the F01 capture's rim views
+//    (8, 3), (8, 4) and (8, 5), at the edge of the micro-image, read 0.078-0.084 px off in x (measured): per
+//    strip, the decoded views (0, 4) and (8, 4) match the ideal ones shifted by about 0.35 x the strip's disparity,
+//    as if sampled a third of a view step towards the centre. Not yet explained (BENCHMARKS.md, seventeenth
+//    session);
 //  - depth: on the views the decoder's weights choose, each strip's mean disparity is within 0.02 px of the truth
 //    (0.075 px when the noisy capture is decoded without its white image);
 //  - colour: in camera colour, the centre view's mean per channel (taken back to linear, over the truth) agree to
