@@ -104,8 +104,14 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   const std::size_t element_size = H5Tget_size(memory_type);
   const std::size_t chunk_bytes = chunk_elements * element_size;
   auto* bytes = static_cast<std::uint8_t*>(destination);
+  hsize_t file_bytes = 0;
+  const hid_t file = H5Iget_file_id(dataset);
+  const bool sized = file >= 0 && H5Fget_filesize(file, &file_bytes) >= 0;
+  if (file >= 0) H5Fclose(file);
+  if (!sized) return false;
+  hsize_t stored_total = 0;
   // Read a batch of raw chunks on one thread (HDF5 is not thread-safe), then inflate them in parallel: memory stays
-  // bounded by a batch of compressed chunks, each no larger than the file holds.
+  // bounded by a batch of compressed chunks, which together fit in the file.
   const std::size_t batch = 16;
   std::vector<std::vector<std::uint8_t>> raw(batch);
   std::vector<int> failed(batch, 0);
@@ -117,6 +123,11 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
       offset[1] = static_cast<hsize_t>((first + k) % dims[1]);
       hsize_t stored = 0;
       if (H5Dget_chunk_storage_size(dataset, offset.data(), &stored) < 0 || stored == 0) return false;
+      // A chunk index that lies must not size the allocations: the chunks together fit in the file.
+      stored_total += stored;
+      if (stored_total > file_bytes)
+        ThrowFileError(name, "the chunks up to view " + std::to_string(first + k) + " declare " +
+                                 std::to_string(stored_total) + " bytes, more than the whole file");
       raw[k].resize(static_cast<std::size_t>(stored));
       std::uint32_t filter_mask = 0;
       if (H5Dread_chunk(dataset, H5P_DEFAULT, offset.data(), &filter_mask, raw[k].data()) < 0)
