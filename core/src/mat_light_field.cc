@@ -206,9 +206,7 @@ void WriteMatLightField(const LightField& light_field, const fs::path& path) {
   const std::size_t h = static_cast<std::size_t>(shape.height), w = static_cast<std::size_t>(shape.width);
   const std::size_t plane = nv * nu * h * w;
   std::vector<std::uint16_t> data(plane * 4);
-  const auto quantise = [](float value) {
-    return static_cast<std::uint16_t>(SampleLevel(value, 65535.0f));
-  };
+  const auto quantise = [](float value) { return static_cast<std::uint16_t>(SampleLevel(value, 65535.0f)); };
   const int rows = shape.nv * shape.nu * shape.height;
 #pragma omp parallel for schedule(static)
   for (int row = 0; row < rows; ++row) {
