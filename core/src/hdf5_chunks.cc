@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <new>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -79,9 +81,12 @@ bool StoredOneViewPerChunk(hid_t dataset, hid_t memory_type, const std::vector<h
   layout = layout && H5Pget_nfilters(properties) == 2;
   for (unsigned i = 0; layout && i < 2; ++i) {
     unsigned flags = 0;
-    std::size_t values = 0;
-    const H5Z_filter_t filter = H5Pget_filter2(properties, i, &flags, &values, nullptr, 0, nullptr, nullptr);
+    std::size_t count = 1;
+    unsigned value = 0;
+    const H5Z_filter_t filter = H5Pget_filter2(properties, i, &flags, &count, &value, 0, nullptr, nullptr);
     layout = filter == (i == 0 ? H5Z_FILTER_SHUFFLE : H5Z_FILTER_DEFLATE);
+    // The shuffle's stored element size is what HDF5 unshuffles with; it must be the type's.
+    if (i == 0) layout = layout && count == 1 && value == H5Tget_size(memory_type);
   }
   H5Pclose(properties);
   return layout;
@@ -103,6 +108,7 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   if (views * chunk_elements != count) return false;
   const std::size_t element_size = H5Tget_size(memory_type);
   const std::size_t chunk_bytes = chunk_elements * element_size;
+  if (chunk_bytes > std::numeric_limits<uInt>::max()) return false;  // zlib counts in uInt
   auto* bytes = static_cast<std::uint8_t*>(destination);
   hsize_t file_bytes = 0;
   const hid_t file = H5Iget_file_id(dataset);
@@ -122,7 +128,9 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
       offset[0] = static_cast<hsize_t>((first + k) / dims[1]);
       offset[1] = static_cast<hsize_t>((first + k) % dims[1]);
       hsize_t stored = 0;
-      if (H5Dget_chunk_storage_size(dataset, offset.data(), &stored) < 0 || stored == 0) return false;
+      if (H5Dget_chunk_storage_size(dataset, offset.data(), &stored) < 0 || stored == 0 ||
+          stored > std::numeric_limits<uInt>::max())
+        return false;
       // A chunk index that lies must not size the allocations: the chunks together fit in the file.
       stored_total += stored;
       if (stored_total > file_bytes)
@@ -136,11 +144,17 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
     }
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t k = 0; k < count_in_batch; ++k) {
-      std::vector<std::uint8_t> planes(chunk_bytes);
-      failed[k] = !InflateChunk(raw[k], planes);
-      if (!failed[k]) Unshuffle(planes.data(), chunk_elements, element_size, bytes + (first + k) * chunk_bytes);
+      try {  // no exception may leave the parallel region
+        std::vector<std::uint8_t> planes(chunk_bytes);
+        failed[k] = !InflateChunk(raw[k], planes);
+        if (!failed[k]) Unshuffle(planes.data(), chunk_elements, element_size, bytes + (first + k) * chunk_bytes);
+      } catch (const std::bad_alloc&) {
+        failed[k] = 2;
+      }
     }
     for (std::size_t k = 0; k < count_in_batch; ++k) {
+      if (failed[k] == 2)
+        ThrowFileError(name, "out of memory inflating the chunk of view " + std::to_string(first + k));
       if (failed[k])
         ThrowFileError(name, "the chunk of view " + std::to_string(first + k) + " does not inflate to its size");
     }
