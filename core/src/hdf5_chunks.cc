@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
-#include <new>
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/parallel_for.h"
 
 namespace lfsp {
 namespace {
@@ -120,7 +120,6 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   // bounded by a batch of compressed chunks, which together fit in the file.
   const std::size_t batch = 16;
   std::vector<std::vector<std::uint8_t>> raw(batch);
-  std::vector<int> failed(batch, 0);
   for (std::size_t first = 0; first < views; first += batch) {
     const std::size_t count_in_batch = std::min(batch, views - first);
     for (std::size_t k = 0; k < count_in_batch; ++k) {
@@ -142,22 +141,14 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
         ThrowFileError(name, "reading the chunk of view " + std::to_string(first + k) + " failed");
       if (filter_mask != 0) return false;  // a filter was skipped for this chunk: HDF5's own read knows what to do
     }
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t k = 0; k < count_in_batch; ++k) {
-      try {  // no exception may leave the parallel region
-        std::vector<std::uint8_t> planes(chunk_bytes);
-        failed[k] = !InflateChunk(raw[k], planes);
-        if (!failed[k]) Unshuffle(planes.data(), chunk_elements, element_size, bytes + (first + k) * chunk_bytes);
-      } catch (const std::bad_alloc&) {
-        failed[k] = 2;
-      }
-    }
-    for (std::size_t k = 0; k < count_in_batch; ++k) {
-      if (failed[k] == 2)
-        ThrowFileError(name, "out of memory inflating the chunk of view " + std::to_string(first + k));
-      if (failed[k])
-        ThrowFileError(name, "the chunk of view " + std::to_string(first + k) + " does not inflate to its size");
-    }
+    // A chunk that does not inflate is an lfsp::Error, rethrown by ParallelFor once the batch is done.
+    ParallelFor(static_cast<int>(count_in_batch), [&](int k) {
+      const std::size_t view = first + static_cast<std::size_t>(k);
+      std::vector<std::uint8_t> planes(chunk_bytes);
+      if (!InflateChunk(raw[static_cast<std::size_t>(k)], planes))
+        ThrowFileError(name, "the chunk of view " + std::to_string(view) + " does not inflate to its size");
+      Unshuffle(planes.data(), chunk_elements, element_size, bytes + view * chunk_bytes);
+    });
   }
   return true;
 }

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/parallel_for.h"
 #include "lfsp/core/view_crop.h"
 
 namespace lfsp {
@@ -68,22 +68,14 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
   const int views = static_cast<int>(shape.Views());
   result.views.resize(shape.Views());
   // Views in parallel (each is independent); the exception of the first view that failed is rethrown as it was.
-  std::vector<std::exception_ptr> failure(shape.Views());
-#pragma omp parallel for schedule(dynamic)
-  for (int cam = 0; cam < views; ++cam) {
+  ParallelFor(views, [&](int cam) {
     ViewShift& entry = result.views[static_cast<std::size_t>(cam)];
     entry.view = ViewFromCameraNumber(cam, shape.nu);
     entry.weight = MeanViewWeight(truth, entry.view);
-    if (entry.weight <= min_weight) continue;
-    try {
-      entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
-      entry.registered = true;
-    } catch (...) {
-      failure[static_cast<std::size_t>(cam)] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& exception : failure)
-    if (exception) std::rethrow_exception(exception);
+    if (entry.weight <= min_weight) return;
+    entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
+    entry.registered = true;
+  });
   for (const ViewShift& entry : result.views) {
     if (!entry.registered) continue;
     ++result.registered;

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <exception>
 #include <map>
 #include <opencv2/core.hpp>
 
@@ -14,6 +13,7 @@
 #include "lfsp/core/hci_config.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/parallel_for.h"
 #include "lfsp/core/views_naming.h"
 #include "views_folder_internal.h"
 
@@ -26,22 +26,6 @@ Transfer TransferFromMetadata(const Metadata& metadata) {
   if (metadata.contains("lfsp") && metadata["lfsp"].contains("transfer") && metadata["lfsp"]["transfer"].is_string())
     return TransferFromString(metadata["lfsp"]["transfer"].get<std::string>());
   return Transfer::kSrgb;  // what PNG views from renderers and cameras hold
-}
-
-// Runs `body(i)` for i in [0, count) on all cores; the first exception is rethrown after the loop.
-template <typename Body>
-void ParallelForEachView(int count, Body body) {
-  std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic)
-  for (int i = 0; i < count; ++i) {
-    try {
-      body(i);
-    } catch (...) {
-#pragma omp critical(lfsp_views_failure)
-      if (!failure) failure = std::current_exception();
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace
@@ -94,13 +78,13 @@ LightField ReadViewsFolder(const fs::path& folder, const std::string& views_patt
   light_field.metadata = metadata;
   light_field.transfer = TransferFromMetadata(metadata);
 
-  ParallelForEachView(view_count, [&](int camera) {
+  ParallelFor(view_count, [&](int camera) {
     cv::Mat view = light_field.View(ViewFromCameraNumber(camera, shape.nu));
     ReadImageInto(layout.files[static_cast<std::size_t>(camera)], view);
   });
   if (static_cast<int>(layout.weight_files.size()) == view_count) {
     light_field.EnableWeights();
-    ParallelForEachView(view_count, [&](int camera) {
+    ParallelFor(view_count, [&](int camera) {
       cv::Mat weights = light_field.WeightView(ViewFromCameraNumber(camera, shape.nu));
       ReadImageInto(layout.weight_files[static_cast<std::size_t>(camera)], weights);
     });
@@ -126,7 +110,7 @@ void WriteViewsInto(const LightField& light_field, const fs::path& folder, const
     throw Error("views folder format must be .png or .tif, not " + options.extension);
   const LightFieldShape& shape = light_field.shape();
   const int view_count = static_cast<int>(shape.Views());
-  ParallelForEachView(view_count, [&](int camera) {
+  ParallelFor(view_count, [&](int camera) {
     const ViewIndex view = ViewFromCameraNumber(camera, shape.nu);
     WriteImage(light_field.View(view), folder / internal::HciViewFileName("input", camera, options.extension),
                options.bit_depth, {{"oiio:ColorSpace", light_field.transfer == Transfer::kSrgb ? "sRGB" : "linear"}});

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <map>
 #include <optional>
 #include <sstream>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/json_fields.h"
+#include "lfsp/core/parallel_for.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/decode/lytro_capture.h"
 
@@ -87,7 +87,6 @@ std::string_view AsText(const std::vector<std::uint8_t>& bytes) {
 struct IndexedPair {
   std::optional<WhiteImageEntry> entry;
   std::string skipped;
-  std::exception_ptr failure;  // anything but lfsp::Error, rethrown as it was once every pair is done
 };
 
 IndexedPair IndexPair(const fs::path& txt) {
@@ -98,7 +97,7 @@ IndexedPair IndexPair(const fs::path& txt) {
     std::error_code ec;
     if (fs::is_regular_file(candidate, ec)) raw = candidate;
   }
-  if (raw.empty()) return {std::nullopt, txt.string() + ": no .RAW beside it", nullptr};
+  if (raw.empty()) return {std::nullopt, txt.string() + ": no .RAW beside it"};
   try {
     const LytroMetadata md = ReadMetadataFile(txt);
     WhiteImageEntry e = EntryFromMetadata(md, txt.string());
@@ -106,9 +105,9 @@ IndexedPair IndexPair(const fs::path& txt) {
     e.metadata_path = txt;
     e.name = txt.stem().string();
     Measure(e, ReadWhiteImageRaw(e), md);
-    return {std::move(e), {}, nullptr};
+    return {std::move(e), {}};
   } catch (const Error& error) {
-    return {std::nullopt, error.what(), nullptr};
+    return {std::nullopt, error.what()};
   }
 }
 
@@ -116,18 +115,9 @@ IndexedPair IndexPair(const fs::path& txt) {
 // whites of a simulated set took 0.51 s one after another, 0.38-0.45 s now), then added in the pairs' order.
 void IndexPairs(const std::vector<fs::path>& pairs, WhiteImageDatabase& db) {
   std::vector<IndexedPair> indexed(pairs.size());
-  const int count = static_cast<int>(pairs.size());
-#pragma omp parallel for schedule(dynamic)
-  for (int i = 0; i < count; ++i) {
-    IndexedPair& out = indexed[static_cast<std::size_t>(i)];
-    try {
-      out = IndexPair(pairs[static_cast<std::size_t>(i)]);
-    } catch (...) {
-      out.failure = std::current_exception();
-    }
-  }
-  for (const IndexedPair& pair : indexed)
-    if (pair.failure) std::rethrow_exception(pair.failure);
+  // Anything but lfsp::Error (which skips the pair) is rethrown as it was once every pair is done.
+  ParallelFor(static_cast<int>(pairs.size()),
+              [&](int i) { indexed[static_cast<std::size_t>(i)] = IndexPair(pairs[static_cast<std::size_t>(i)]); });
   for (IndexedPair& pair : indexed) {
     if (pair.entry)
       db.entries.push_back(std::move(*pair.entry));
