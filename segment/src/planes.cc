@@ -160,11 +160,27 @@ BoundaryTypeCounts SmoothPlanes(const cv::Mat& labels, int count, const cv::Mat&
   }
   const double data_weight = params.lambda_d / (disparity_range * disparity_range);
 
+  const int boundary_count = static_cast<int>(boundaries.size());
+  std::vector<Moments> data_points(static_cast<std::size_t>(count));
   for (int round = 0; round < params.plane_iterations; ++round) {
-    for (Boundary& boundary : boundaries) boundary.type = CheapestType(boundary, segment_points, planes, params);
+    // The boundary types and each label's inliers depend only on the planes as the round starts (label k's own
+    // plane changes only at k's turn below), so both are found in parallel before the Gauss-Seidel pass.
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+      for (int b = 0; b < boundary_count; ++b) {
+        Boundary& boundary = boundaries[static_cast<std::size_t>(b)];
+        boundary.type = CheapestType(boundary, segment_points, planes, params);
+      }
+#pragma omp for schedule(dynamic, 16)
+      for (int k = 0; k < count; ++k) {
+        const std::size_t sk = static_cast<std::size_t>(k);
+        data_points[sk] = InlierMoments(pixels[sk], disparity, planes[sk], params.inlier_threshold);
+      }
+    }
     for (int k = 0; k < count; ++k) {
       const std::size_t sk = static_cast<std::size_t>(k);
-      const Moments data = InlierMoments(pixels[sk], disparity, planes[sk], params.inlier_threshold);
+      const Moments& data = data_points[sk];
       cv::Matx33d lhs = data.m * data_weight;
       cv::Vec3d rhs = data.r * data_weight;
       for (std::size_t b : boundaries_of[sk]) {

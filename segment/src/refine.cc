@@ -10,11 +10,9 @@
 #include <cstring>
 #include <limits>
 #include <opencv2/core/mat.hpp>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
+#include "label_block.h"
 #include "planes.h"
+#include "rounding.h"
 
 namespace lfsp::segment {
 namespace {
@@ -24,6 +22,22 @@ struct Slice {
   double l = 0, a = 0, b = 0, x = 0, y = 0;
   double inv_n = 0;  // 1 / n, kept beside n: every cost evaluation needs it and moves are 20 times rarer
   int n = 0;
+};
+
+// The view a sweep is in, with its neighbouring views in the angular clique (b outer, a inner; at most 8).
+struct SweptView {
+  struct Neighbour {
+    const std::int32_t* labels;
+    std::uint8_t* flags;  // its rays' awake flags
+    int a, b;             // view offset
+  };
+  int cam = 0, u = 0, v = 0;
+  int du = 0, dv = 0;  // offset from the centre view
+  bool centre = false;
+  std::int32_t* labels = nullptr;
+  std::uint8_t* flags = nullptr;
+  std::array<Neighbour, 8> neighbours{};
+  int neighbour_count = 0;
 };
 
 // The shared state of one refinement, with views addressed by camera number.
@@ -73,7 +87,12 @@ class Refiner {
   const std::int32_t* ViewLabels(int cam) const {
     return labels_.data() + static_cast<std::size_t>(cam) * view_pixels_;
   }
+  std::uint8_t* ViewFlags(int cam) { return active_.data() + static_cast<std::size_t>(cam) * view_pixels_; }
   Slice& SliceOf(int cam, int k) {
+    return slices_[static_cast<std::size_t>(cam) * static_cast<std::size_t>(in_.superpixels) +
+                   static_cast<std::size_t>(k)];
+  }
+  const Slice& SliceOf(int cam, int k) const {
     return slices_[static_cast<std::size_t>(cam) * static_cast<std::size_t>(in_.superpixels) +
                    static_cast<std::size_t>(k)];
   }
@@ -124,7 +143,7 @@ class Refiner {
 
   // Rounded disparity of the ray (x, y) of view offset (du, dv) if it belongs to label k (Eq. 2).
   int RoundedDisparity(int k, int x, int y, int du, int dv) const {
-    return static_cast<int>(std::lround(RayDisparity(k, x, y, du, dv)));
+    return RoundHalfAway(RayDisparity(k, x, y, du, dv));
   }
   // A shift beyond the view's size puts every angular neighbour outside it, so the disparity is clamped there: a
   // hostile disparity map's planes (1e30, NaN) would otherwise overflow the integer positions the boundary term and
@@ -139,30 +158,24 @@ class Refiner {
     return std::isnan(d) ? 0.0 : std::copysign(max_shift, d);
   }
 
-  // Would removing the ray at (x, y) split its label's slice? True if the label appears in more than one separate
-  // run around the 8-ring (corners count only when 4-connected to the ring through an edge neighbour).
+  // Would removing the ray at (x, y) split its label's slice? (SplitsWithoutCentre, for rays on the view's edge.)
   bool IsArticulation(const std::int32_t* labels, int x, int y, std::int32_t own) const {
-    static constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}};
-    bool in[8];
-    for (int i = 0; i < 8; ++i) {
-      const int nx = x + kRing[i][0], ny = y + kRing[i][1];
-      in[i] = nx >= 0 && ny >= 0 && nx < width_ && ny < height_ && labels[ny * width_ + nx] == own;
+    unsigned same = 0;
+    for (int row = 0; row < 3; ++row) {
+      for (int column = 0; column < 3; ++column) {
+        const int nx = x + column - 1, ny = y + row - 1;
+        const bool in = nx >= 0 && ny >= 0 && nx < width_ && ny < height_ && labels[ny * width_ + nx] == own;
+        same |= static_cast<unsigned>(in) << (4 * row + column);
+      }
     }
-    for (int i = 0; i < 8; i += 2) {  // corners: keep only if an adjacent edge cell is in
-      if (in[i] && !in[(i + 7) % 8] && !in[(i + 1) % 8]) in[i] = false;
-    }
-    int runs = 0;
-    for (int i = 0; i < 8; ++i) {
-      if (in[i] && !in[(i + 7) % 8]) ++runs;
-    }
-    return runs > 1;
+    return SplitsWithoutCentre(same);
   }
 
   // Boundary term (Eq. 7) of label k for the ray (x, y) of view (u, v), before the lambda_b / 8 factor: spatial
   // neighbours in this view, angular neighbours at the candidate's rounded disparity in the 8 neighbouring views,
   // and the mixed ones around them.
-  // Near the border it may stop early, returning a value above `limit`, once the cost exceeds it; inside, where the
-  // angular and mixed counts come from the same reads, it does not.
+  // It may stop early, returning a value above `limit`, once the cost exceeds it: after the spatial count and, near
+  // the border, after the angular one (inside, the angular and mixed counts come from the same reads).
   // The clique is cut at the image border and at the edge views of the light field; the counts of differing
   // neighbours are rescaled to the full clique (8 spatial, 8 angular, 64 mixed) so that rays there resist label
   // changes as much as anywhere else (otherwise the edge views, with 3 or 5 neighbouring views instead of 8, drift).
@@ -170,50 +183,51 @@ class Refiner {
   // clique follows the true epipolar line instead of a rounded one (rounding d would favour moving a boundary by
   // round(d) per view step, and the error adds up towards the edge views). Its 3x3 mixed ring is taken around the
   // nearest pixel.
-  double BoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, double limit) {
-    const int rounded = static_cast<int>(std::lround(d));
+  double BoundaryCost(const SweptView& view, int x, int y, int k, double d, double limit) const {
+    const int rounded = RoundHalfAway(d);
     const int reach = std::abs(rounded) + 1;  // the 3x3 blocks of the neighbouring views must lie inside the view
     if (x >= reach && y >= reach && x + reach + 1 < width_ && y + reach < height_) {
-      return InteriorBoundaryCost(own_view, u, v, x, y, k, d, rounded);
+      return InteriorBoundaryCost(view, x, y, k, d, rounded, limit);
     }
-    return BorderBoundaryCost(own_view, u, v, x, y, k, d, rounded, limit);
+    return BorderBoundaryCost(view, x, y, k, d, rounded, limit);
   }
 
   // BoundaryCost where every neighbour of the clique lies inside its view. Each neighbouring view's 3x3 block around
   // the rounded angular neighbour is read once: its ring gives the mixed count and, since the bilinear window of the
   // exact neighbour (within half a pixel of the block's centre) lies inside the block, its 2x2 part the angular one.
-  double InteriorBoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d,
-                              int rounded) const {
+  double InteriorBoundaryCost(const SweptView& view, int x, int y, int k, double d, int rounded, double limit) const {
     const int w = width_;
-    const std::int32_t* p = own_view + y * w + x;
-    const int spatial = (p[-w - 1] != k) + (p[-w] != k) + (p[-w + 1] != k) + (p[-1] != k) + (p[1] != k) +
-                        (p[w - 1] != k) + (p[w] != k) + (p[w + 1] != k);
-    const std::array<AxisTap, 3> tx{Tap(x, -1, d, rounded), Tap(x, 0, d, rounded), Tap(x, 1, d, rounded)};
-    const std::array<AxisTap, 3> ty{Tap(y, -1, d, rounded), Tap(y, 0, d, rounded), Tap(y, 1, d, rounded)};
-    double angular = 0.0;
-    int mixed = 0, views = 0;
-    for (int b = -1; b <= 1; ++b) {
-      const int nv = v + b;
-      if (nv < 0 || nv >= shape_.nv) continue;
-      const AxisTap& row_tap = ty[static_cast<std::size_t>(b + 1)];
-      for (int a = -1; a <= 1; ++a) {
-        const int nu = u + a;
-        if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
-        // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
-        const std::int32_t* c = ViewLabels(nv * shape_.nu + nu) + (y - b * rounded) * w + (x - a * rounded);
-        const unsigned same = SameAs3x3(c, w, k);
-        mixed += 8 - RingCount(same);
-        const AxisTap& column_tap = tx[static_cast<std::size_t>(a + 1)];
-        // Bit 0 of `low`: (x0, y0), bit 1: (x0 + 1, y0), bit 4: (x0, y0 + 1), bit 5: (x0 + 1, y0 + 1).
-        const unsigned low = same >> (row_tap.offset * 4 + column_tap.offset);
-        const double top = (1.0 - column_tap.weight) * !(low & 1u) + column_tap.weight * !(low & 2u);
-        const double bottom = (1.0 - column_tap.weight) * !(low & 16u) + column_tap.weight * !(low & 32u);
-        angular += (1.0 - row_tap.weight) * top + row_tap.weight * bottom;
-        ++views;
-      }
+    const double spatial = (8 - RingCount(SameAs3x3(view.labels + y * w + x, w, k))) * p_.pen_spatial;
+    if (spatial > limit) return spatial;  // a candidate most of whose own-view neighbours are other labels
+    // Along an axis the view does not move on, the angular neighbour is the ray's own position: no bilinear weight.
+    constexpr AxisTap kStill{1, 0.0};
+    const std::array<AxisTap, 3> tx{Tap(x, -1, d, rounded), kStill, Tap(x, 1, d, rounded)};
+    const std::array<AxisTap, 3> ty{Tap(y, -1, d, rounded), kStill, Tap(y, 1, d, rounded)};
+    // The mismatch of one row of a bilinear window, by view column and the row's two "same" bits (bit 0: left).
+    std::array<std::array<double, 4>, 3> row_mismatch;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double weight = tx[a].weight;
+      for (unsigned bits = 0; bits < 4; ++bits)
+        row_mismatch[a][bits] = (1.0 - weight) * !(bits & 1u) + weight * !(bits & 2u);
     }
-    return spatial * p_.pen_spatial + Rescaled(angular, views, 8) * p_.pen_angular +
-           Rescaled(mixed, 8 * views, 64) * p_.pen_mixed;
+    double angular = 0.0;
+    int mixed = 0;
+    const int centre_offset = y * w + x;
+    for (int i = 0; i < view.neighbour_count; ++i) {
+      const SweptView::Neighbour& n = view.neighbours[static_cast<std::size_t>(i)];
+      // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
+      const unsigned same = SameAs3x3(n.labels + centre_offset - (n.b * w + n.a) * rounded, w, k);
+      mixed += 8 - RingCount(same);
+      const auto column = static_cast<std::size_t>(n.a + 1);
+      const AxisTap& row_tap = ty[static_cast<std::size_t>(n.b + 1)];
+      // Bit 0 of `low`: (x0, y0), bit 1: (x0 + 1, y0), bit 4: (x0, y0 + 1), bit 5: (x0 + 1, y0 + 1).
+      const unsigned low = same >> (row_tap.offset * 4 + tx[column].offset);
+      const double top = row_mismatch[column][low & 3u];
+      const double bottom = row_mismatch[column][(low >> 4) & 3u];
+      angular += (1.0 - row_tap.weight) * top + row_tap.weight * bottom;
+    }
+    const int views = view.neighbour_count;
+    return spatial + Rescaled(angular, views, 8) * p_.pen_angular + Rescaled(mixed, 8 * views, 64) * p_.pen_mixed;
   }
 
   // Where the bilinear window of an angular neighbour starts along one axis, relative to the top-left of the 3x3
@@ -230,43 +244,11 @@ class Refiner {
     return {first - (at - step * rounded) + 1, position - first};
   }
 
-  // Bit (4 row + column) set where the label of the 3x3 block centred on c equals k (bits 3, 7 and 11 are not
-  // part of the block). With SSE2 each row is one 4-lane compare, which reads one label past the block: the
-  // interior test leaves room for it.
-  static unsigned SameAs3x3(const std::int32_t* c, int stride, int k) {
-#if defined(__SSE2__)
-    const __m128i key = _mm_set1_epi32(k);
-    unsigned same = 0;
-    for (int row = 0; row < 3; ++row) {
-      const __m128i labels = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + (row - 1) * stride - 1));
-      same |= static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(labels, key)))) << (4 * row);
-    }
-    return same;
-#else
-    unsigned same = 0;
-    for (int row = 0; row < 3; ++row) {
-      const std::int32_t* r = c + (row - 1) * stride;
-      same |= (static_cast<unsigned>(r[-1] == k) | static_cast<unsigned>(r[0] == k) << 1 |
-               static_cast<unsigned>(r[1] == k) << 2)
-              << (4 * row);
-    }
-    return same;
-#endif
-  }
-
-  // The number of set bits among the 8 ring bits of a SameAs3x3 pattern (by table: without -mpopcnt, std::popcount
-  // is a library call, which cost 4 % of a segmentation).
-  static int RingCount(unsigned same) {
-    static constexpr std::array<std::uint8_t, 16> kBits = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
-    return kBits[same & 7u] + kBits[(same >> 4) & 5u] + kBits[(same >> 8) & 7u];
-  }
-
   // BoundaryCost near the border of the view, where parts of the clique fall outside it.
-  double BorderBoundaryCost(const std::int32_t* own_view, int u, int v, int x, int y, int k, double d, int rounded,
-                            double limit) {
+  double BorderBoundaryCost(const SweptView& view, int x, int y, int k, double d, int rounded, double limit) const {
     const int w = width_;
     int spatial_valid = 8;
-    const int spatial = CountBlock(own_view, x, y, k, spatial_valid);
+    const int spatial = CountBlock(view.labels, x, y, k, spatial_valid);
     // First the angular neighbours (the heaviest penalty), which usually settle a hopeless candidate; then the
     // mixed ones around them.
     struct Block {
@@ -274,20 +256,14 @@ class Refiner {
       int x, y;
     };
     std::array<Block, 8> blocks;
-    int block_count = 0;
     double angular = 0.0, angular_valid = 0.0;
-    for (int b = -1; b <= 1; ++b) {
-      const int nv = v + b;
-      if (nv < 0 || nv >= shape_.nv) continue;
-      for (int a = -1; a <= 1; ++a) {
-        const int nu = u + a;
-        if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu) continue;
-        // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
-        const Block block{ViewLabels(nv * shape_.nu + nu), x - a * rounded, y - b * rounded};
-        AddBilinear(block.labels, x - a * d, y - b * d, k, angular, angular_valid);
-        blocks[static_cast<std::size_t>(block_count++)] = block;
-      }
+    for (int i = 0; i < view.neighbour_count; ++i) {
+      const SweptView::Neighbour& n = view.neighbours[static_cast<std::size_t>(i)];
+      // Moving one view step along +u shifts a point by -d (docs/DESIGN.md convention).
+      blocks[static_cast<std::size_t>(i)] = Block{n.labels, x - n.a * rounded, y - n.b * rounded};
+      AddBilinear(n.labels, x - n.a * d, y - n.b * d, k, angular, angular_valid);
     }
+    const int block_count = view.neighbour_count;
     double cost =
         Rescaled(spatial, spatial_valid, 8) * p_.pen_spatial + Rescaled(angular, angular_valid, 8) * p_.pen_angular;
     if (cost > limit) return cost;
@@ -308,7 +284,11 @@ class Refiner {
     return cost + Rescaled(mixed, mixed_valid, 64) * p_.pen_mixed;
   }
 
-  static double Rescaled(double count, double valid, int full) { return valid > 0 ? count * full / valid : 0.0; }
+  // The full clique needs no rescaling (count * full / full is count exactly; the division was 4 % of a sweep).
+  static double Rescaled(double count, double valid, int full) {
+    if (valid == full) return count;
+    return valid > 0 ? count * full / valid : 0.0;
+  }
 
   // Adds the bilinear weights of the pixels around (fx, fy) whose label differs from k to `count`, and the weights
   // of those inside the view to `valid`.
@@ -347,20 +327,18 @@ class Refiner {
   }
 
   // The energy of the ray with label k; once it is known to exceed `limit` it returns early (a value > limit).
-  double Cost(int cam, int u, int v, const std::int32_t* own_view, int x, int y, std::size_t index, int k, bool centre,
-              double limit) {
-    const Slice& s = SliceOf(cam, k);
+  double Cost(const SweptView& view, int x, int y, std::size_t index, int k, double limit) const {
+    const Slice& s = SliceOf(view.cam, k);
     const double inv_n = s.inv_n;
-    const float* lab = LabOf(cam, index);
+    const float* lab = LabOf(view.cam, index);
     const double dl = lab[0] - s.l * inv_n, da = lab[1] - s.a * inv_n, db = lab[2] - s.b * inv_n;
     // The slice's position centre is where the superpixel's centre-view centroid lands in this view along its
     // plane, so slices clipped by the image border or partly occluded are not pulled towards their visible part.
     const std::size_t sk = static_cast<std::size_t>(k);
-    const double dx = x - (centre_x_[sk] - (u - centre_.u) * centre_d_[sk]);
-    const double dy = y - (centre_y_[sk] - (v - centre_.v) * centre_d_[sk]);
+    const double dx = x - (centre_x_[sk] - view.du * centre_d_[sk]);
+    const double dy = y - (centre_y_[sk] - view.dv * centre_d_[sk]);
     double cost = (dl * dl + da * da + db * db) * inv_colour_ + p_.lambda_p * (dx * dx + dy * dy) * inv_size_;
-    const int du = u - centre_.u, dv = v - centre_.v;
-    if (centre) {
+    if (view.centre) {
       const float d = in_.centre_disparity[index];
       if (std::isfinite(d)) {
         const double e = (d - planes_[static_cast<std::size_t>(k)].AtCentre(x, y)) * inv_range_;
@@ -370,7 +348,7 @@ class Refiner {
     if (cost > limit) return cost;
     const double boundary_limit =
         boundary_weight_ > 0.0 ? (limit - cost) / boundary_weight_ : std::numeric_limits<double>::infinity();
-    cost += boundary_weight_ * BoundaryCost(own_view, u, v, x, y, k, RayDisparity(k, x, y, du, dv), boundary_limit);
+    cost += boundary_weight_ * BoundaryCost(view, x, y, k, RayDisparity(k, x, y, view.du, view.dv), boundary_limit);
     return cost;
   }
 
@@ -379,16 +357,33 @@ class Refiner {
   // 4-neighbours (which cover the bilinear partners). Rays that see it only as a mixed neighbour (weight 0.7 of 4)
   // are left asleep: waking all 80 would re-evaluate ten times more rays for little change. Flags of other views
   // may be set by several threads at once, so they are written atomically.
-  void Wake(int u, int v, int x, int y, int rounded) {
+  void Wake(const SweptView& view, int x, int y, int rounded) {
+    const int reach = std::abs(rounded) + 1;
+    if (x < reach || y < reach || x + reach >= width_ || y + reach >= height_) {
+      WakeNearBorder(view, x, y, rounded);
+      return;
+    }
+    const int w = width_;
+    std::uint8_t* own = view.flags + y * w + x;
+    for (const int offset : {-w - 1, -w, -w + 1, -1, 0, 1, w - 1, w, w + 1}) SetAwake(own + offset);
+    for (int i = 0; i < view.neighbour_count; ++i) {
+      const SweptView::Neighbour& n = view.neighbours[static_cast<std::size_t>(i)];
+      // A ray q of view (u+a, v+b) sees this ray as its angular neighbour when q sits where this ray's scene point
+      // appears there, at (x - a d, y - b d).
+      std::uint8_t* q = n.flags + (y - n.b * rounded) * w + (x - n.a * rounded);
+      for (const int offset : {-w, -1, 0, 1, w}) SetAwake(q + offset);
+    }
+  }
+
+  // Wake for rays whose 3x3 or angular neighbours' crosses reach past the view's border.
+  void WakeNearBorder(const SweptView& view, int x, int y, int rounded) {
     for (int b = -1; b <= 1; ++b) {
-      const int nv = v + b;
+      const int nv = view.v + b;
       if (nv < 0 || nv >= shape_.nv) continue;
       for (int a = -1; a <= 1; ++a) {
-        const int nu = u + a;
+        const int nu = view.u + a;
         if (nu < 0 || nu >= shape_.nu) continue;
-        std::uint8_t* flags = active_.data() + static_cast<std::size_t>(nv * shape_.nu + nu) * view_pixels_;
-        // A ray q of view (u+a, v+b) sees this ray as its angular neighbour when q sits where this ray's scene point
-        // appears there, at (x - a d, y - b d).
+        std::uint8_t* flags = ViewFlags(nv * shape_.nu + nu);
         const int cx = x - a * rounded, cy = y - b * rounded;
         const bool own = a == 0 && b == 0;
         for (int oy = -1; oy <= 1; ++oy) {
@@ -397,12 +392,14 @@ class Refiner {
           for (int ox = -1; ox <= 1; ++ox) {
             const int nx = cx + ox;
             if (nx < 0 || nx >= width_ || (!own && ox != 0 && oy != 0)) continue;
-            __atomic_store_n(flags + ny * width_ + nx, std::uint8_t{1}, __ATOMIC_RELAXED);
+            SetAwake(flags + ny * width_ + nx);
           }
         }
       }
     }
   }
+
+  static void SetAwake(std::uint8_t* flag) { __atomic_store_n(flag, std::uint8_t{1}, __ATOMIC_RELAXED); }
 
   // True if the eight flags from `flags` are all clear. Only the thread sweeping a view writes its flags while it
   // runs (views of one phase are two steps apart, and Wake reaches one step), so a plain read is safe here.
@@ -412,13 +409,35 @@ class Refiner {
     return word == 0;
   }
 
+  SweptView MakeSweptView(int cam) {
+    SweptView view;
+    const ViewIndex index = ViewFromCameraNumber(cam, shape_.nu);
+    view.cam = cam;
+    view.u = index.u;
+    view.v = index.v;
+    view.du = index.u - centre_.u;
+    view.dv = index.v - centre_.v;
+    view.centre = index == centre_;
+    view.labels = ViewLabels(cam);
+    view.flags = ViewFlags(cam);
+    for (int b = -1; b <= 1; ++b) {
+      for (int a = -1; a <= 1; ++a) {
+        const int nu = view.u + a, nv = view.v + b;
+        if ((a == 0 && b == 0) || nu < 0 || nu >= shape_.nu || nv < 0 || nv >= shape_.nv) continue;
+        const int neighbour = nv * shape_.nu + nu;
+        view.neighbours[static_cast<std::size_t>(view.neighbour_count++)] = {ViewLabels(neighbour),
+                                                                             ViewFlags(neighbour), a, b};
+      }
+    }
+    return view;
+  }
+
   long long SweepView(int cam) {
-    const ViewIndex view = ViewFromCameraNumber(cam, shape_.nu);
-    const int u = view.u, v = view.v;
-    const bool centre = view == centre_;
-    const int du = u - centre_.u, dv = v - centre_.v;
-    std::int32_t* labels = ViewLabels(cam);
-    std::uint8_t* flags = active_.data() + static_cast<std::size_t>(cam) * view_pixels_;
+    const SweptView view = MakeSweptView(cam);
+    const bool centre = view.centre;
+    const int du = view.du, dv = view.dv;
+    std::int32_t* labels = view.labels;
+    std::uint8_t* flags = view.flags;
     long long moves = 0;
     for (int y = 0; y < height_; ++y) {
       for (int x = 0; x < width_; ++x) {
@@ -431,24 +450,40 @@ class Refiner {
         if (__atomic_load_n(flags + index, __ATOMIC_RELAXED) == 0) continue;
         __atomic_store_n(flags + index, std::uint8_t{0}, __ATOMIC_RELAXED);
         const std::int32_t own = labels[index];
+        // The candidates: the labels of the 4-neighbours, left, right, up, down, each once.
         std::array<std::int32_t, 5> candidates{own, own, own, own, own};
         int count = 1;
-        const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-        for (const auto& n : neighbours) {
-          if (n[0] < 0 || n[1] < 0 || n[0] >= width_ || n[1] >= height_) continue;
-          const std::int32_t label = labels[n[1] * width_ + n[0]];
-          if (std::find(candidates.begin(), candidates.begin() + count, label) == candidates.begin() + count) {
-            candidates[static_cast<std::size_t>(count++)] = label;
+        const auto consider = [&](std::int32_t label) {
+          for (int i = 0; i < count; ++i) {
+            if (candidates[static_cast<std::size_t>(i)] == label) return;
           }
+          candidates[static_cast<std::size_t>(count++)] = label;
+        };
+        bool splits = false;
+        if (x >= 1 && y >= 1 && x + 2 < width_ && y + 1 < height_) {  // the block and SameAs3x3's extra label
+          const unsigned same = SameAs3x3(labels + index, width_, own);
+          if ((same & kEdgeBits) == kEdgeBits) continue;  // interior ray
+          const std::int32_t* p = labels + index;
+          consider(p[-1]);
+          consider(p[1]);
+          consider(p[-width_]);
+          consider(p[width_]);
+          splits = SplitsWithoutCentre(same);
+        } else {
+          if (x > 0) consider(labels[index - 1]);
+          if (x + 1 < width_) consider(labels[index + 1]);
+          if (y > 0) consider(labels[index - static_cast<std::size_t>(width_)]);
+          if (y + 1 < height_) consider(labels[index + static_cast<std::size_t>(width_)]);
+          if (count == 1) continue;  // interior ray
+          splits = IsArticulation(labels, x, y, own);
         }
-        if (count == 1) continue;                          // interior ray
         if (centre && SliceOf(cam, own).n <= 1) continue;  // keep every label in the centre view (ELR = 1)
-        if (IsArticulation(labels, x, y, own)) continue;   // keep the slice connected
+        if (splits) continue;                              // keep the slice connected
         std::int32_t best = own;
-        double best_cost = Cost(cam, u, v, labels, x, y, index, own, centre, std::numeric_limits<double>::infinity());
+        double best_cost = Cost(view, x, y, index, own, std::numeric_limits<double>::infinity());
         for (int i = 1; i < count; ++i) {
           const std::int32_t k = candidates[static_cast<std::size_t>(i)];
-          const double cost = Cost(cam, u, v, labels, x, y, index, k, centre, best_cost);
+          const double cost = Cost(view, x, y, index, k, best_cost);
           if (cost < best_cost) {
             best_cost = cost;
             best = k;
@@ -462,8 +497,8 @@ class Refiner {
         ++moves;
         const int rounded_old = RoundedDisparity(own, x, y, du, dv);
         const int rounded_new = RoundedDisparity(best, x, y, du, dv);
-        Wake(u, v, x, y, rounded_old);
-        if (rounded_new != rounded_old) Wake(u, v, x, y, rounded_new);
+        Wake(view, x, y, rounded_old);
+        if (rounded_new != rounded_old) Wake(view, x, y, rounded_new);
       }
     }
     return moves;
