@@ -23,40 +23,50 @@ bool SolvePlane(const cv::Matx33d& m, const cv::Vec3d& r, Plane& plane) {
   return true;
 }
 
-std::vector<std::vector<int>> PixelsOfLabels(const cv::Mat& labels, int count) {
-  std::vector<std::vector<int>> pixels(static_cast<std::size_t>(count));
+// A pixel of the centre view by its coordinates (the plane fits need x and y; dividing an index by the width was a
+// third of the plane smoothing's time).
+struct Pixel {
+  int x, y;
+};
+
+std::vector<std::vector<Pixel>> PixelsOfLabels(const cv::Mat& labels, int count) {
+  std::vector<std::vector<Pixel>> pixels(static_cast<std::size_t>(count));
   for (int y = 0; y < labels.rows; ++y) {
     const int* row = labels.ptr<int>(y);
-    for (int x = 0; x < labels.cols; ++x) pixels[static_cast<std::size_t>(row[x])].push_back(y * labels.cols + x);
+    for (int x = 0; x < labels.cols; ++x) pixels[static_cast<std::size_t>(row[x])].push_back({x, y});
   }
   return pixels;
 }
 
 // Inlier moments of one label's pixels around the current plane (all finite samples if fewer than 3 inliers).
-Moments InlierMoments(const std::vector<int>& pixels, const cv::Mat& disparity, const Plane& plane, double threshold) {
+Moments InlierMoments(const std::vector<Pixel>& pixels, const cv::Mat& disparity, const Plane& plane,
+                      double threshold) {
   const int width = disparity.cols;
   const float* d = disparity.ptr<float>(0);
   Moments inliers;
-  for (int index : pixels) {
-    const float value = d[index];
+  for (const Pixel& pixel : pixels) {
+    const float value = d[pixel.y * width + pixel.x];
     if (!std::isfinite(value)) continue;
-    const double x = index % width, y = index / width;
+    const double x = pixel.x, y = pixel.y;
     if (std::abs(value - plane.AtCentre(x, y)) < threshold) inliers.Add(x, y, value);
   }
   if (inliers.n >= 3) return inliers;
   Moments all;
-  for (int index : pixels) {
-    if (std::isfinite(d[index])) all.Add(index % width, index / width, d[index]);
+  for (const Pixel& pixel : pixels) {
+    const float value = d[pixel.y * width + pixel.x];
+    if (std::isfinite(value)) all.Add(pixel.x, pixel.y, value);
   }
   return all;
 }
 
-double MedianDisparity(const std::vector<int>& pixels, const cv::Mat& disparity) {
+double MedianDisparity(const std::vector<Pixel>& pixels, const cv::Mat& disparity) {
   const float* d = disparity.ptr<float>(0);
   std::vector<float> values;
   values.reserve(pixels.size());
-  for (int index : pixels) {
-    if (std::isfinite(d[index])) values.push_back(d[index]);
+  const int width = disparity.cols;
+  for (const Pixel& pixel : pixels) {
+    const float value = d[pixel.y * width + pixel.x];
+    if (std::isfinite(value)) values.push_back(value);
   }
   if (values.empty()) return 0.0;
   auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -126,11 +136,11 @@ BoundaryType CheapestType(const Boundary& boundary, const std::vector<Moments>& 
 }  // namespace
 
 std::vector<Plane> FitPlanes(const cv::Mat& labels, int count, const cv::Mat& disparity, double inlier_threshold) {
-  const std::vector<std::vector<int>> pixels = PixelsOfLabels(labels, count);
+  const std::vector<std::vector<Pixel>> pixels = PixelsOfLabels(labels, count);
   std::vector<Plane> planes(static_cast<std::size_t>(count));
 #pragma omp parallel for schedule(dynamic, 16)
   for (int k = 0; k < count; ++k) {
-    const std::vector<int>& support = pixels[static_cast<std::size_t>(k)];
+    const std::vector<Pixel>& support = pixels[static_cast<std::size_t>(k)];
     Plane plane{0.0, 0.0, MedianDisparity(support, disparity)};
     for (int round = 0; round < 3; ++round) {
       const Moments inliers = InlierMoments(support, disparity, plane, inlier_threshold);
@@ -145,12 +155,11 @@ std::vector<Plane> FitPlanes(const cv::Mat& labels, int count, const cv::Mat& di
 
 BoundaryTypeCounts SmoothPlanes(const cv::Mat& labels, int count, const cv::Mat& disparity, double disparity_range,
                                 const LfspParams& params, std::vector<Plane>& planes) {
-  const std::vector<std::vector<int>> pixels = PixelsOfLabels(labels, count);
+  const std::vector<std::vector<Pixel>> pixels = PixelsOfLabels(labels, count);
   std::vector<Moments> segment_points(static_cast<std::size_t>(count));
   for (int k = 0; k < count; ++k) {
-    for (int index : pixels[static_cast<std::size_t>(k)]) {
-      segment_points[static_cast<std::size_t>(k)].Add(index % labels.cols, index / labels.cols);
-    }
+    for (const Pixel& pixel : pixels[static_cast<std::size_t>(k)])
+      segment_points[static_cast<std::size_t>(k)].Add(pixel.x, pixel.y);
   }
   std::vector<Boundary> boundaries = FindBoundaries(labels);
   std::vector<std::vector<std::size_t>> boundaries_of(static_cast<std::size_t>(count));
