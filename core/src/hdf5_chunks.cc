@@ -154,17 +154,15 @@ void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, 
   // thread-safe).
   const std::size_t batch = 16;
   std::vector<std::vector<std::uint8_t>> compressed(batch);
-  std::vector<int> failed(batch, 0);
   for (std::size_t first = 0; first < views; first += batch) {
     const std::size_t count = std::min(batch, views - first);
-#pragma omp parallel for schedule(dynamic, 1)
+    ParallelFor(static_cast<int>(count), [&](int k) {
+      const std::size_t view = first + static_cast<std::size_t>(k);
+      const std::vector<std::uint8_t> shuffled = Shuffled(bytes + view * chunk_bytes, chunk_elements, element_size);
+      if (!DeflateChunk(shuffled, level, compressed[static_cast<std::size_t>(k)]))
+        ThrowFileError(name, "compressing view " + std::to_string(view) + " failed");
+    });
     for (std::size_t k = 0; k < count; ++k) {
-      const std::vector<std::uint8_t> shuffled =
-          Shuffled(bytes + (first + k) * chunk_bytes, chunk_elements, element_size);
-      failed[k] = !DeflateChunk(shuffled, level, compressed[k]);
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      if (failed[k]) ThrowFileError(name, "compressing a view failed");
       std::vector<hsize_t> offset(static_cast<std::size_t>(rank), 0);
       offset[0] = static_cast<hsize_t>((first + k) / static_cast<std::size_t>(nu));
       offset[1] = static_cast<hsize_t>((first + k) % static_cast<std::size_t>(nu));
