@@ -87,6 +87,7 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
                                 {"initial", lfsp.timings.initial_seconds},
                                 {"projection", lfsp.timings.projection_seconds},
                                 {"refine", lfsp.timings.refine_seconds},
+                                {"carry", lfsp.timings.carry_seconds},
                                 {"segmentation", lfsp.timings.total_seconds},
                                 {"stage", stopwatch.Seconds()}};
   WriteJsonSummary(summary, SummaryPathFor(out));

@@ -71,13 +71,14 @@ TEST(Lfsp, ASuperpixelCutByAThinOccluderKeepsBothPieces) {
     most = std::max(most, MostPiecesOfALabel(result.labels, ViewFromCameraNumber(cam, result.labels.shape().nu)));
   EXPECT_GE(most, 2);
   EXPECT_TRUE(EveryLabelConnectedInTheCentreView(result.labels));
-  // Measured at this small size: SS 2.021 px against the carried reference's 0.939 (2.054 with the clean-up). At
-  // 512 px (the bench) 0.845 against 0.814 (0.898 with the clean-up).
+  // Measured at this small size: SS 1.011 px against the carried reference's 0.939 (2.021 before the centre labels
+  // were carried into the side views after the refinement, 2.054 with the clean-up). At 512 px (the bench) 0.784
+  // against 0.807 (0.845 before the carry, 0.898 with the clean-up).
   const Labels reference = CarryCentreLabels(result.labels, scene.disparity, scene.view_disparity);
   const double ss = SelfSimilarity(result.labels, scene.view_disparity);
   const double ss_reference = SelfSimilarity(reference, scene.view_disparity);
   std::cout << "occluders 128: SS " << ss << " reference " << ss_reference << "\n";
-  EXPECT_LT(ss - ss_reference, 1.10);
+  EXPECT_LT(ss - ss_reference, 0.25);
 }
 
 TEST(Lfsp, BlockCoordinateDescentImprovesBoundariesAndKeepsTheLightFieldProperties) {
@@ -122,6 +123,31 @@ TEST(Lfsp, MoreViewConsistentThanPerViewSlicWithComparableBoundaries) {
     EXPECT_GT(br_lfsp, br_slic - 0.02) << name;
     EXPECT_LT(ue_lfsp, ue_slic + 0.002) << name;
     EXPECT_EQ(EffectiveLabelRatio(lfsp.labels), 1.0) << name;
+  }
+}
+
+// Issue 19: next to thin occluders (a comb of 1-4 px teeth and gaps; several occlusion layers) the side views are as
+// consistent as the centre labels carried by the ground truth, at the full 512 x 512 the comb is laid out for. Before
+// the centre labels were carried into the side views after the refinement (centre_carry.h), SS was 1.46 (comb) and
+// 2.38 px (layers) against references of 0.77 and 1.11, with BR 0.787 and 0.926; measured after: SS 0.650 and 1.089,
+// BR 0.816 and 0.956 (BENCHMARKS.md, twentieth session).
+TEST(Lfsp, AsConsistentAsTheCarriedReferenceNextToThinOccluders) {
+  struct Expected {
+    const char* scene;
+    double min_boundary_recall;
+  };
+  for (const Expected& expected : {Expected{"comb", 0.80}, Expected{"layers", 0.94}}) {
+    const simulate::RenderedLightField scene = Render(expected.scene, 512);
+    const LfspResult result = SegmentLightField(scene.light_field, scene.disparity, {});
+    const double ss = SelfSimilarity(result.labels, scene.view_disparity);
+    const double ss_reference =
+        SelfSimilarity(CarryCentreLabels(result.labels, scene.disparity, scene.view_disparity), scene.view_disparity);
+    const double br = BoundaryRecall(result.labels, scene.labels);
+    std::cout << expected.scene << ": SS " << ss << " reference " << ss_reference << " BR " << br << "\n";
+    EXPECT_LE(ss, ss_reference + 0.03) << expected.scene;
+    EXPECT_GE(br, expected.min_boundary_recall) << expected.scene;
+    EXPECT_EQ(EffectiveLabelRatio(result.labels), 1.0) << expected.scene;
+    EXPECT_TRUE(EveryLabelConnectedInTheCentreView(result.labels)) << expected.scene;
   }
 }
 

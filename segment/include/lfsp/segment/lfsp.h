@@ -14,6 +14,7 @@ struct LfspTimings {
   double projection_seconds = 0.0;  // projection into all views + filling
   double refine_seconds = 0.0;      // block-coordinate descent (label sweeps + plane steps)
   double plane_seconds = 0.0;       // of which plane smoothing
+  double carry_seconds = 0.0;       // the refined centre labels carried into the side views
   double total_seconds = 0.0;
 };
 
@@ -33,7 +34,9 @@ struct LfspResult {
 // Segments the light field into light-field superpixels (Algorithm 1): SLIC of the centre view with colour, position
 // and disparity; a slanted plane per superpixel; projection of every superpixel into all views (occlusion order by
 // disparity, disoccluded rays filled from the background side); then the energy of Eq. 3 minimised by
-// block-coordinate descent over boundary rays. `disparity` is the centre-view disparity (docs/DESIGN.md convention).
+// block-coordinate descent over boundary rays; last, the refined centre labels carried into the side views along
+// the disparity wherever the centre view sees the ray (centre_carry.h). `disparity` is the centre-view disparity
+// (docs/DESIGN.md convention).
 // Throws lfsp::Error if the sizes disagree or a parameter is out of range.
 LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& disparity,
                              const LfspParams& params = {});

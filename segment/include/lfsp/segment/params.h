@@ -47,7 +47,8 @@ struct LfspParams {
 
 // The colour smoothing chosen for a noise level (EstimateNoiseSigma): none up to kCleanNoiseLevel, then 0.4 px per 0.01
 // of noise, at most 1.5 px. On planes (9x9 views of 256x256, true disparity, Gaussian noise 0.08 per channel, which
-// reads 0.054, so 1.5 px): SS 1.83 -> 0.95 px, UE 0.126 -> 0.016, BR 0.932 unchanged.
+// reads 0.054, so 1.5 px): SS 1.83 -> 0.95 px, UE 0.126 -> 0.016, BR 0.932 unchanged (measured before the side views
+// were carried from the centre view, centre_carry.h, which cuts the unsmoothed SS too).
 double PresmoothForNoise(double noise_sigma);
 
 nlohmann::json ToJson(const LfspParams& params);
