@@ -24,8 +24,9 @@ void AddLfspParameters(CLI::App* command, segment::LfspParams& p) {
   AddParameter(command, "--pen-angular", p.pen_angular, "Angular-neighbour penalty E_pen_a (Table II)");
   AddParameter(command, "--colour-scale", p.colour_scale, "Lab distance worth one unit of energy");
   AddParameter(command, "--slic-iterations", p.slic_iterations, "Iterations of the initial centre-view SLIC");
-  AddParameter(command, "--iterations", p.iterations,
-               "Outer block-coordinate-descent iterations (0 = projection only)");
+  AddParameter(
+      command, "--iterations", p.iterations,
+      "Outer block-coordinate-descent iterations (0 = none: the projection, then the carry of the centre labels)");
   AddParameter(command, "--plane-iterations", p.plane_iterations, "Plane-smoothing rounds per outer iteration");
   AddParameter(command, "--inlier-threshold", p.inlier_threshold,
                "Disparity residual (px) above which a pixel does not pull its plane");
