@@ -19,9 +19,11 @@ void ForwardWarp(const std::int32_t* centre_labels, const float* centre_disparit
           static_cast<std::size_t>(y0) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x0);
       const float d = centre_disparity[source];
       if (centre_labels[source] < 0 || !std::isfinite(d)) continue;
-      const int x = static_cast<int>(std::floor(static_cast<float>(x0) - static_cast<float>(du) * d + 0.5f));
-      const int y = static_cast<int>(std::floor(static_cast<float>(y0) - static_cast<float>(dv) * d + 0.5f));
-      if (x < 0 || y < 0 || x >= width || y >= height) continue;
+      const float fx = std::floor(static_cast<float>(x0) - static_cast<float>(du) * d + 0.5f);
+      const float fy = std::floor(static_cast<float>(y0) - static_cast<float>(dv) * d + 0.5f);
+      // Compared as floats first: a hostile disparity (1e30) lands beyond what an int holds.
+      if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(width) && fy < static_cast<float>(height))) continue;
+      const int x = static_cast<int>(fx), y = static_cast<int>(fy);
       const std::size_t target =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
       if (d > view_depth[target]) {
