@@ -123,7 +123,7 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   result.timings.refine_seconds = step.Lap();
   // The side views' label moves drift from the centre's superpixels next to thin occluders (centre_carry.h); the
   // refined centre view is carried back into them along the disparity. On the simulator's comb, self-similarity
-  // 1.46 -> 0.68 px (reference 0.77), boundary recall 0.787 -> 0.810 (BENCHMARKS.md, twentieth session).
+  // 1.46 -> 0.65 px (reference 0.77), boundary recall 0.787 -> 0.816 (BENCHMARKS.md, twentieth session).
   CarryCentreToSideViews(centre_disparity, result.labels);
   result.timings.carry_seconds = step.Lap();
   // No per-view connectivity clean-up: a superpixel's slice in a side view may be cut in two by something in front
