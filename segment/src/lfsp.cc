@@ -124,7 +124,7 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   // The side views' label moves drift from the centre's superpixels next to thin occluders (centre_carry.h); the
   // refined centre view is carried back into them along the disparity. On the simulator's comb, self-similarity
   // 1.46 -> 0.65 px (reference 0.77), boundary recall 0.787 -> 0.816 (BENCHMARKS.md, twentieth session).
-  CarryCentreToSideViews(centre_disparity, result.labels);
+  CarryCentreToSideViews(centre_disparity, result.planes, result.labels);
   result.timings.carry_seconds = step.Lap();
   // No per-view connectivity clean-up: a superpixel's slice in a side view may be cut in two by something in front
   // of it that the centre view sees beside it, and merging the smaller piece into a neighbour (as a clean-up did)
