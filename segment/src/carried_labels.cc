@@ -11,13 +11,6 @@
 #include "warp.h"
 
 namespace lfsp::segment {
-namespace {
-
-// How far (px per view step) a ray's disparity may differ from the centre pixel it lands on and still be the same
-// scene point: well above the rounding of one pixel on slanted surfaces, well below an occlusion step.
-constexpr float kSameSurfaceTolerance = 0.25f;
-
-}  // namespace
 
 Labels CarryCentreLabels(const Labels& labels, const DisparityMap& centre_disparity,
                          const std::vector<DisparityMap>& view_disparity) {

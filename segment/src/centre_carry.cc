@@ -9,14 +9,10 @@
 namespace lfsp::segment {
 namespace {
 
-// How far (px per view step) a centre pixel's disparity may be from a plane and still lie on it: as
-// CarryCentreLabels's tolerance, well above a slanted surface's rounding, well below an occlusion step.
-constexpr double kSameSurface = 0.25;
-
 // Is `label` one of the centre labels at the pixels around (px, py), the fractional centre position the ray images
 // (floor and ceiling on each axis: one pixel where the position is whole)? Then the carried label differs from it
 // only by where the rounding fell.
-// With `disparity`, the pixel must also lie on the surface at disparity `surface` (within kSameSurface).
+// With `disparity`, the pixel must also lie on the surface at disparity `surface` (within kSameSurfaceTolerance).
 bool AroundSource(const std::int32_t* centre, int width, int height, double px, double py, std::int32_t label,
                   const float* disparity = nullptr, double surface = 0.0) {
   if (!(px > -1.0 && py > -1.0 && px < width && py < height)) return false;  // before any cast (NaN, 1e30)
@@ -25,7 +21,7 @@ bool AroundSource(const std::int32_t* centre, int width, int height, double px, 
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
       if (x < 0 || y < 0 || x >= width || y >= height || centre[y * width + x] != label) continue;
-      if (disparity == nullptr || std::abs(disparity[y * width + x] - surface) <= kSameSurface) return true;
+      if (disparity == nullptr || std::abs(disparity[y * width + x] - surface) <= kSameSurfaceTolerance) return true;
     }
   }
   return false;

@@ -5,6 +5,10 @@
 
 namespace lfsp::segment {
 
+// How far (px per view step) two disparities may differ and still be the same scene surface: well above the rounding
+// of one pixel on slanted surfaces, well below an occlusion step. Used wherever labels are carried along disparity.
+constexpr float kSameSurfaceTolerance = 0.25f;
+
 // Forward projection of centre-view samples into the view at offset (du, dv) = (u - uc, v - vc), docs/DESIGN.md
 // convention: centre pixel (x0, y0) with disparity d lands at (x0 - du d, y0 - dv d), rounded to the nearest pixel.
 // Where several land on one pixel the largest disparity (front-most) wins. Pixels nothing lands on keep label -1 and
