@@ -24,6 +24,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["range"] = {{"min", estimate.range.min}, {"max", estimate.range.max}, {"source", estimate.range_source}};
   summary["parameters"] = depth::ToJson(options);
   summary["occlusion_candidates"] = estimate.occlusion_candidates;
+  summary["thin_structure_refusals"] = estimate.thin_structure_refusals;
   summary["occlusion_radius"] = estimate.occlusion_radius;
   summary["noise_sigma"] = estimate.noise_sigma;
   summary["fine_band_snr"] = estimate.fine_band_snr;

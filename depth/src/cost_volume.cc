@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 #include <string>
@@ -332,7 +333,8 @@ float CostRange(const CostOptions& options) {
 }
 
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
-                           const CostOptions& options, const OcclusionMap* occlusion) {
+                           const CostOptions& options, const OcclusionMap* occlusion,
+                           OcclusionAlternatives* alternatives) {
   CheckInput(light_field, disparities, occlusion);
   const LightFieldShape& shape = light_field.shape();
   const int width = shape.width;
@@ -368,6 +370,11 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   const std::size_t row_samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(features.channels);
 
   CostVolume volume(width, height, labels);
+  if (alternatives != nullptr) {
+    constexpr float kNone = std::numeric_limits<float>::infinity();
+    alternatives->half = CostVolume(width, height, labels, kNone);
+    alternatives->along = CostVolume(width, height, labels, kNone);
+  }
 #pragma omp parallel
   {
     // Per-thread scratch for one tile: per label and row, the sum over all views and over the views in half A of
@@ -436,6 +443,8 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
           float* curve = volume.Curve(y, x);
           const bool use_halves =
               candidate != nullptr && candidate[x] != 0 && splits.views_a[split[x]] > 0 && splits.views_b[split[x]] > 0;
+          float* half_curve = use_halves && alternatives ? alternatives->half.Curve(y, x) : nullptr;
+          float* along_curve = use_halves && alternatives ? alternatives->along.Curve(y, x) : nullptr;
           for (int l = 0; l < labels; ++l) {
             const float total = row_of(totals, l, row)[x];
             float cost = total / all_views;
@@ -444,13 +453,17 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
               // better of the two halves split along the edge.
               const int j = split[x];
               const float half_a = row_of(halves, l, row)[x];
-              const float half = std::min(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
-              cost = std::min(cost, options.half_patch_penalty * half);
+              const float half = options.half_patch_penalty *
+                                 std::min(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
+              if (half_curve) half_curve[l] = half;
+              if (!alternatives) cost = std::min(cost, half);
               // In a gap between two occluders (a comb's teeth, a fence) both halves hold an occluder, but the
               // views along the edge see through the gap.
               const int a = along_pair[x];
               if (along_edge && splits.views_along[a] > 0) {
-                cost = std::min(cost, options.along_edge_penalty * row_of(alongs, l, row)[x] / splits.views_along[a]);
+                const float along = options.along_edge_penalty * row_of(alongs, l, row)[x] / splits.views_along[a];
+                if (along_curve) along_curve[l] = along;
+                if (!alternatives) cost = std::min(cost, along);
               }
             }
             curve[l] = cost;

@@ -10,15 +10,21 @@
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/depth/detail_weight.h"
 #include "lfsp/depth/disparity_range.h"
+#include "lfsp/depth/occlusion_alternatives.h"
 #include "lfsp/depth/presmooth.h"
 
 namespace lfsp::depth {
 namespace {
 
+// Whether the partial angular patches are admitted pixel by pixel (occlusion_alternatives.h) rather than everywhere.
+bool ChecksThinStructures(const DepthOptions& options) {
+  return options.occlusion_handling && options.thin_structures.reach > 0;
+}
+
 // How many steps EstimateDepth times (as many laps as it makes).
 std::size_t StepsOf(const DepthOptions& options) {
-  return 4 + (options.aggregation_radius > 0 ? 1 : 0) + (options.regularise ? 2 : 0) +
-         (options.regularise && options.plane_fit ? 1 : 0);
+  return 4 + (ChecksThinStructures(options) ? 1 : 0) + (options.aggregation_radius > 0 ? 1 : 0) +
+         (options.regularise ? 2 : 0) + (options.regularise && options.plane_fit ? 1 : 0);
 }
 
 }  // namespace
@@ -101,8 +107,21 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (cost_options.channel_weights[0] < 0.0f) cost_options.channel_weights = ChannelWeightsForNoise(channel_noise);
   result.channel_weights = cost_options.channel_weights;
   result.sgm = PenaltiesForCost(options.sgm, cost_options);
-  CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr);
+  OcclusionAlternatives alternatives;
+  const bool check_thin_structures = occlusion && ChecksThinStructures(options);
+  CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr,
+                                    check_thin_structures ? &alternatives : nullptr);
   lap("cost_volume");
+  if (check_thin_structures) {
+    // The whole patch's disparity, regularised as the final one will be: it keeps thin structures in front.
+    const DisparityMap whole_patch =
+        SelectDisparity(options.regularise ? AggregateSemiGlobal(cost, centre, result.sgm) : cost, disparities)
+            .disparity;
+    result.thin_structure_refusals = AdmitOcclusionAlternatives(cost, alternatives, whole_patch, disparities,
+                                                                *occlusion, centre, options.thin_structures);
+    alternatives = OcclusionAlternatives();
+    lap("occlusion_alternatives");
+  }
   if (options.aggregation_radius > 0) {
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);
     lap("local_aggregation");

@@ -104,15 +104,27 @@ struct CostOptions {
 // BuildCostVolume). The default options give 0.86.
 float CostRange(const CostOptions& options);
 
+// The costs of the partial angular patches a pixel near an edge may use instead of the whole one (penalties of
+// CostOptions applied): the cheaper half of the edge's split, and the views along the edge. Infinite at pixels
+// that are not occlusion candidates (and `along` wherever the along-edge views are off).
+struct OcclusionAlternatives {
+  CostVolume half;
+  CostVolume along;
+};
+
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile from
 // one interleaved copy of the views' features (RGB, and the detail image when the detail term has weight; the centre
 // view's blurred too for the noise-matched sampler): each non-centre view is resampled at the
 // sub-pixel shift the label predicts (CostOptions::sampler) and compared with the centre view (see CostOptions).
 // Views are accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular
 // patch on one side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge
-// orientation). Without `occlusion` (nullptr) every pixel averages all views. The light field must be RGB (3 channels).
+// orientation), or the views along the edge. Without `alternatives` (nullptr) the cheapest of the whole patch and
+// these is returned; with it, the returned volume is the whole patch's cost and the partial patches' costs go to
+// `alternatives` (EstimateDepth admits them pixel by pixel: occlusion_alternatives.h). Without `occlusion` (nullptr)
+// every pixel averages all views. The light field must be RGB (3 channels).
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
-                           const CostOptions& options, const OcclusionMap* occlusion);
+                           const CostOptions& options, const OcclusionMap* occlusion,
+                           OcclusionAlternatives* alternatives = nullptr);
 
 // Filters every label slice of the volume with a guided filter (He et al.) steered by the centre view: window
 // (2 radius + 1)^2, regularisation epsilon. Costs are averaged over similar-coloured neighbours only, which lifts

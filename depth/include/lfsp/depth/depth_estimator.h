@@ -10,6 +10,7 @@
 #include "lfsp/core/metadata.h"
 #include "lfsp/depth/cost_volume.h"
 #include "lfsp/depth/occlusion.h"
+#include "lfsp/depth/occlusion_alternatives.h"
 #include "lfsp/depth/plane_fit.h"
 #include "lfsp/depth/refinement.h"
 #include "lfsp/depth/sgm.h"
@@ -24,6 +25,8 @@ struct DepthOptions {
   bool regularise = true;  // semi-global aggregation; false = plain winner-take-all on the cost volume
   CostOptions cost;
   OcclusionOptions occlusion;
+  // Near edges, where a partial angular patch may replace the whole one: refused on thin structures in front.
+  ThinStructureOptions thin_structures;
   int aggregation_radius = 0;         // edge-aware (guided filter) cost aggregation before SGM (0 = off)
   float aggregation_epsilon = 1e-3f;  // guided filter regularisation (squared intensity units)
   SgmOptions sgm;
@@ -42,6 +45,7 @@ struct DepthResult {
   DisparityRange range;
   std::string range_source;              // "options", "metadata" or "estimated from the views"
   int occlusion_candidates = 0;          // pixels that used the edge-split angular patch
+  int thin_structure_refusals = 0;       // (pixel, partial patch) pairs refused on thin structures in front
   double occlusion_radius = 0.0;         // the radius used (after the automatic choice)
   double noise_sigma = 0.0;              // estimated noise of the centre view (Immerkaer), sample units
   double fine_band_snr = 0.0;            // FineBandSignalToNoise of the unsmoothed centre view

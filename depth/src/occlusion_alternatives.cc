@@ -1,0 +1,88 @@
+#include "lfsp/depth/occlusion_alternatives.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "lfsp/core/error.h"
+
+namespace lfsp::depth {
+namespace {
+
+// The unit normal of the edge whose views-along pair is `along` (OcclusionMap::along): a quarter turn from the
+// pair's direction.
+cv::Point2d EdgeNormal(int along) {
+  const double angle = (along + kSectors / 4) * 2.0 * std::numbers::pi / kSectors;
+  return {std::cos(angle), std::sin(angle)};
+}
+
+float ColourDifference(const cv::Vec3f& a, const cv::Vec3f& b) {
+  return (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2])) / 3.0f;
+}
+
+// Whether, walking from (x, y) along `step` for up to `reach` pixels, a pixel of disparity at most `behind` shows a
+// colour other than the starting pixel's.
+bool SurfaceBehindOnThisSide(const DisparityMap& whole_patch, const cv::Mat& centre, int x, int y, cv::Point2d step,
+                             float behind, const ThinStructureOptions& options) {
+  const cv::Vec3f colour = centre.at<cv::Vec3f>(y, x);
+  for (int k = 1; k <= options.reach; ++k) {
+    const int xx = x + static_cast<int>(std::lround(k * step.x));
+    const int yy = y + static_cast<int>(std::lround(k * step.y));
+    if (xx < 0 || yy < 0 || xx >= whole_patch.width() || yy >= whole_patch.height()) return false;
+    if (whole_patch.at(yy, xx) <= behind &&
+        ColourDifference(centre.at<cv::Vec3f>(yy, xx), colour) > options.colour_difference)
+      return true;
+  }
+  return false;
+}
+
+// Whether the alternative's curve at (x, y) prefers the surface behind a thin structure the pixel belongs to.
+bool ThinStructureInFront(const float* alternative, const DisparityMap& whole_patch,
+                          const std::vector<float>& disparities, const cv::Mat& centre, int x, int y,
+                          cv::Point2d normal, const ThinStructureOptions& options) {
+  const int labels = static_cast<int>(disparities.size());
+  const auto best = std::min_element(alternative, alternative + labels) - alternative;
+  const float preferred = disparities[static_cast<std::size_t>(best)];
+  if (!(preferred < whole_patch.at(y, x) - options.margin)) return false;
+  const float behind = preferred + options.margin;
+  return SurfaceBehindOnThisSide(whole_patch, centre, x, y, normal, behind, options) &&
+         SurfaceBehindOnThisSide(whole_patch, centre, x, y, -normal, behind, options);
+}
+
+}  // namespace
+
+int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& alternatives,
+                               const DisparityMap& whole_patch, const std::vector<float>& disparities,
+                               const OcclusionMap& occlusion, const cv::Mat& centre,
+                               const ThinStructureOptions& options) {
+  const int width = cost.width();
+  const int height = cost.height();
+  const int labels = cost.labels();
+  if (static_cast<int>(disparities.size()) != labels || whole_patch.width() != width ||
+      whole_patch.height() != height || centre.type() != CV_32FC3 || centre.cols != width || centre.rows != height ||
+      occlusion.candidate.cols != width || occlusion.candidate.rows != height) {
+    throw Error("depth: occlusion alternatives, disparity, centre view and cost volume differ in size");
+  }
+  int refused = 0;
+#pragma omp parallel for schedule(static) reduction(+ : refused)
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (occlusion.candidate.at<unsigned char>(y, x) == 0) continue;
+      const cv::Point2d normal = EdgeNormal(occlusion.along.at<unsigned char>(y, x));
+      float* curve = cost.Curve(y, x);
+      for (const CostVolume* alternative : {&alternatives.half, &alternatives.along}) {
+        const float* candidate = alternative->Curve(y, x);
+        if (!std::isfinite(candidate[0])) continue;  // not available here (the views along the edge are off)
+        if (options.reach > 0 &&
+            ThinStructureInFront(candidate, whole_patch, disparities, centre, x, y, normal, options)) {
+          ++refused;
+          continue;
+        }
+        for (int l = 0; l < labels; ++l) curve[l] = std::min(curve[l], candidate[l]);
+      }
+    }
+  }
+  return refused;
+}
+
+}  // namespace lfsp::depth
