@@ -44,7 +44,8 @@ nlohmann::json ToJson(const DepthOptions& options) {
                        {"radius", options.occlusion.radius}};
   json["thin_structures"] = {{"reach", options.thin_structures.reach},
                              {"margin", options.thin_structures.margin},
-                             {"colour_difference", options.thin_structures.colour_difference}};
+                             {"colour_difference", options.thin_structures.colour_difference},
+                             {"blend_difference", options.thin_structures.blend_difference}};
   json["sgm"] = {{"p1", options.sgm.p1}, {"p2", options.sgm.p2}, {"edge_sigma", options.sgm.edge_sigma}};
   json["plane_fit"] = {{"enabled", options.plane_fit},
                        {"region_size", options.plane.region_size},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "lfsp/core/error.h"
 
@@ -20,20 +21,28 @@ float ColourDifference(const cv::Vec3f& a, const cv::Vec3f& b) {
   return (std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2])) / 3.0f;
 }
 
-// Whether, walking from (x, y) along `step` for up to `reach` pixels, a pixel of disparity at most `behind` shows a
-// colour other than the starting pixel's.
-bool SurfaceBehindOnThisSide(const DisparityMap& whole_patch, const cv::Mat& centre, int x, int y, cv::Point2d step,
-                             float behind, const ThinStructureOptions& options) {
+// ColourDifference between `colour` and the nearest blend of `a` and `b`: small on the mixed pixel of an edge
+// between two colours, large on a structure of its own colour.
+float DifferenceFromEveryBlend(const cv::Vec3f& colour, const cv::Vec3f& a, const cv::Vec3f& b) {
+  const cv::Vec3f ab = b - a;
+  const float length = ab.dot(ab);
+  const float t = length > 0.0f ? std::clamp((colour - a).dot(ab) / length, 0.0f, 1.0f) : 0.0f;
+  return ColourDifference(colour, a + t * ab);
+}
+
+// Walking from (x, y) along `step` for up to `reach` pixels, the colour of the first pixel of disparity at most
+// `behind` whose colour differs from the starting pixel's; nothing if there is none.
+std::optional<cv::Vec3f> SurfaceBehindOnThisSide(const DisparityMap& whole_patch, const cv::Mat& centre, int x, int y,
+                                                 cv::Point2d step, float behind, const ThinStructureOptions& options) {
   const cv::Vec3f colour = centre.at<cv::Vec3f>(y, x);
   for (int k = 1; k <= options.reach; ++k) {
     const int xx = x + static_cast<int>(std::lround(k * step.x));
     const int yy = y + static_cast<int>(std::lround(k * step.y));
-    if (xx < 0 || yy < 0 || xx >= whole_patch.width() || yy >= whole_patch.height()) return false;
-    if (whole_patch.at(yy, xx) <= behind &&
-        ColourDifference(centre.at<cv::Vec3f>(yy, xx), colour) > options.colour_difference)
-      return true;
+    if (xx < 0 || yy < 0 || xx >= whole_patch.width() || yy >= whole_patch.height()) return std::nullopt;
+    const cv::Vec3f seen = centre.at<cv::Vec3f>(yy, xx);
+    if (whole_patch.at(yy, xx) <= behind && ColourDifference(seen, colour) > options.colour_difference) return seen;
   }
-  return false;
+  return std::nullopt;
 }
 
 // Whether the alternative's curve at (x, y) prefers the surface behind a thin structure the pixel belongs to.
@@ -45,8 +54,13 @@ bool ThinStructureInFront(const float* alternative, const DisparityMap& whole_pa
   const float preferred = disparities[static_cast<std::size_t>(best)];
   if (!(preferred < whole_patch.at(y, x) - options.margin)) return false;
   const float behind = preferred + options.margin;
-  return SurfaceBehindOnThisSide(whole_patch, centre, x, y, normal, behind, options) &&
-         SurfaceBehindOnThisSide(whole_patch, centre, x, y, -normal, behind, options);
+  const std::optional<cv::Vec3f> one_side = SurfaceBehindOnThisSide(whole_patch, centre, x, y, normal, behind, options);
+  if (!one_side) return false;
+  const std::optional<cv::Vec3f> other_side =
+      SurfaceBehindOnThisSide(whole_patch, centre, x, y, -normal, behind, options);
+  // An edge between two colours (a checker's) is not a structure: its mixed pixel is a blend of the two sides.
+  return other_side &&
+         DifferenceFromEveryBlend(centre.at<cv::Vec3f>(y, x), *one_side, *other_side) > options.blend_difference;
 }
 
 }  // namespace

@@ -105,6 +105,25 @@ TEST(OcclusionAlternatives, AGapBetweenTwoOccludersKeepsItsPatches) {
   EXPECT_EQ(scene.Preferred(8), 0);
 }
 
+// The mixed pixel on the edge between two tiles of a checker is a blend of the two tiles' colours, not a structure
+// of its own, even where the whole patch reads it nearer than both.
+TEST(OcclusionAlternatives, TheMixedPixelOfAColourEdgeIsNotAStructure) {
+  const cv::Vec3f black(0.05f, 0.05f, 0.05f);
+  const cv::Vec3f tan(0.65f, 0.55f, 0.35f);
+  Layout layout = Background();
+  Paint(layout, 0, 8, -1.0f, black);
+  Paint(layout, 9, kWidth, -1.0f, tan);
+  Paint(layout, 8, 9, 1.0f, 0.5f * (black + tan));
+  Scene scene(layout);
+  EXPECT_EQ(scene.Admit(), 0);
+  EXPECT_EQ(scene.Preferred(8), 0);
+  // The same pixel in a colour of its own is a 1 px structure in front.
+  Paint(layout, 8, 9, 1.0f, kRed);
+  Scene structure(layout);
+  EXPECT_EQ(structure.Admit(), 2 * kHeight);
+  EXPECT_EQ(structure.Preferred(8), 2);
+}
+
 // A structure wider than the reach is not thin: beside its edge, its own pixels see no surface behind on that side.
 TEST(OcclusionAlternatives, AWideObjectIsNotAThinStructure) {
   Layout layout = Background();
