@@ -72,9 +72,13 @@ int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& al
   const int width = cost.width();
   const int height = cost.height();
   const int labels = cost.labels();
-  if (static_cast<int>(disparities.size()) != labels || whole_patch.width() != width ||
-      whole_patch.height() != height || centre.type() != CV_32FC3 || centre.cols != width || centre.rows != height ||
-      occlusion.candidate.cols != width || occlusion.candidate.rows != height) {
+  const auto same_shape = [&](const CostVolume& other) {
+    return other.width() == width && other.height() == height && other.labels() == labels;
+  };
+  if (static_cast<int>(disparities.size()) != labels || !same_shape(alternatives.half) ||
+      !same_shape(alternatives.along) || whole_patch.width() != width || whole_patch.height() != height ||
+      centre.type() != CV_32FC3 || centre.cols != width || centre.rows != height || occlusion.candidate.cols != width ||
+      occlusion.candidate.rows != height) {
     throw Error("depth: occlusion alternatives, disparity, centre view and cost volume differ in size");
   }
   int refused = 0;

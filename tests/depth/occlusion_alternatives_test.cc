@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "lfsp/core/error.h"
 #include "lfsp/depth/occlusion_alternatives.h"
 
 namespace lfsp::depth {
@@ -130,6 +131,12 @@ TEST(OcclusionAlternatives, AWideObjectIsNotAThinStructure) {
   Paint(layout, 2, 14, 1.0f, kRed);
   Scene scene(layout);
   EXPECT_EQ(scene.Admit(), 0);
+}
+
+TEST(OcclusionAlternatives, VolumesOfAnotherShapeAreAnError) {
+  Scene scene(Background());
+  scene.alternatives.along = CostVolume();  // as if the views along the edge had not been built
+  EXPECT_THROW(scene.Admit(), Error);
 }
 
 }  // namespace
