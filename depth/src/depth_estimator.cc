@@ -113,10 +113,11 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
                                     check_thin_structures ? &alternatives : nullptr);
   lap("cost_volume");
   if (check_thin_structures) {
-    // The whole patch's disparity, regularised as the final one will be: it keeps thin structures in front.
+    // The whole patch's disparity, through the same semi-global pass as the final one (without local aggregation
+    // or refinement): it keeps thin structures in front.
     const DisparityMap whole_patch =
-        SelectDisparity(options.regularise ? AggregateSemiGlobal(cost, centre, result.sgm) : cost, disparities)
-            .disparity;
+        options.regularise ? SelectDisparity(AggregateSemiGlobal(cost, centre, result.sgm), disparities).disparity
+                           : SelectDisparity(cost, disparities).disparity;
     result.thin_structure_refusals = AdmitOcclusionAlternatives(cost, alternatives, whole_patch, disparities,
                                                                 *occlusion, centre, options.thin_structures);
     alternatives = OcclusionAlternatives();

@@ -63,6 +63,25 @@ bool ThinStructureInFront(const float* alternative, const DisparityMap& whole_pa
          DifferenceFromEveryBlend(centre.at<cv::Vec3f>(y, x), *one_side, *other_side) > options.blend_difference;
 }
 
+void CheckShapes(const CostVolume& cost, const OcclusionAlternatives& alternatives, const DisparityMap& whole_patch,
+                 const std::vector<float>& disparities, const OcclusionMap& occlusion, const cv::Mat& centre) {
+  const auto same_volume = [&](const CostVolume& other) {
+    return other.width() == cost.width() && other.height() == cost.height() && other.labels() == cost.labels();
+  };
+  const auto same_image = [&](const cv::Mat& image) {
+    return image.cols == cost.width() && image.rows == cost.height();
+  };
+  if (static_cast<int>(disparities.size()) != cost.labels())
+    throw Error("depth: the occlusion alternatives' label count differs from the disparities'");
+  if (!same_volume(alternatives.half) || !same_volume(alternatives.along) || whole_patch.width() != cost.width() ||
+      whole_patch.height() != cost.height() || !same_image(centre) || !same_image(occlusion.candidate) ||
+      !same_image(occlusion.along)) {
+    throw Error("depth: occlusion alternatives, disparity, occlusion map, centre view and cost volume differ in size");
+  }
+  if (centre.type() != CV_32FC3 || occlusion.candidate.type() != CV_8U || occlusion.along.type() != CV_8U)
+    throw Error("depth: occlusion alternatives need a float RGB centre view and an 8-bit occlusion map");
+}
+
 }  // namespace
 
 int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& alternatives,
@@ -72,15 +91,7 @@ int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& al
   const int width = cost.width();
   const int height = cost.height();
   const int labels = cost.labels();
-  const auto same_shape = [&](const CostVolume& other) {
-    return other.width() == width && other.height() == height && other.labels() == labels;
-  };
-  if (static_cast<int>(disparities.size()) != labels || !same_shape(alternatives.half) ||
-      !same_shape(alternatives.along) || whole_patch.width() != width || whole_patch.height() != height ||
-      centre.type() != CV_32FC3 || centre.cols != width || centre.rows != height || occlusion.candidate.cols != width ||
-      occlusion.candidate.rows != height) {
-    throw Error("depth: occlusion alternatives, disparity, centre view and cost volume differ in size");
-  }
+  CheckShapes(cost, alternatives, whole_patch, disparities, occlusion, centre);
   int refused = 0;
 #pragma omp parallel for schedule(static) reduction(+ : refused)
   for (int y = 0; y < height; ++y) {
@@ -89,14 +100,14 @@ int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& al
       const cv::Point2d normal = EdgeNormal(occlusion.along.at<unsigned char>(y, x));
       float* curve = cost.Curve(y, x);
       for (const CostVolume* alternative : {&alternatives.half, &alternatives.along}) {
-        const float* candidate = alternative->Curve(y, x);
-        if (!std::isfinite(candidate[0])) continue;  // not available here (the views along the edge are off)
+        const float* partial_curve = alternative->Curve(y, x);
+        if (!std::isfinite(partial_curve[0])) continue;  // not available here (e.g. the views along the edge are off)
         if (options.reach > 0 &&
-            ThinStructureInFront(candidate, whole_patch, disparities, centre, x, y, normal, options)) {
+            ThinStructureInFront(partial_curve, whole_patch, disparities, centre, x, y, normal, options)) {
           ++refused;
           continue;
         }
-        for (int l = 0; l < labels; ++l) curve[l] = std::min(curve[l], candidate[l]);
+        for (int l = 0; l < labels; ++l) curve[l] = std::min(curve[l], partial_curve[l]);
       }
     }
   }

@@ -64,8 +64,10 @@ struct Scene {
   OcclusionMap occlusion;
 };
 
-// Columns [begin, end) set to disparity d and colour c, the rest grey background at -1.
+// Every column grey background at -1.
 Layout Background() { return {std::vector<float>(kWidth, -1.0f), std::vector<cv::Vec3f>(kWidth, kGrey)}; }
+
+// Columns [begin, end) set to disparity d and colour c.
 void Paint(Layout& layout, int begin, int end, float d, const cv::Vec3f& c) {
   for (int x = begin; x < end; ++x) {
     layout.disparity[static_cast<std::size_t>(x)] = d;
@@ -94,16 +96,22 @@ TEST(OcclusionAlternatives, WithoutTheCheckEveryPatchIsAdmitted) {
   EXPECT_EQ(scene.Preferred(7), 0);  // the picket is lost to the background
 }
 
-// A gap between two teeth reads as the teeth on the whole patch; its neighbours beyond the teeth are background of
-// the gap's own colour, so the gap is not a structure in front: its partial patches stay.
+// A gap between two 2 px teeth reads as the teeth on the whole patch; the background beyond the teeth, within reach
+// on both sides, has the gap's own colour, so the gap is not a structure in front: its partial patches stay.
 TEST(OcclusionAlternatives, AGapBetweenTwoOccludersKeepsItsPatches) {
   Layout layout = Background();
-  Paint(layout, 4, 12, 1.0f, kRed);
+  Paint(layout, 5, 11, 1.0f, kRed);
   Paint(layout, 7, 9, 1.0f, kGrey);  // the gap: background colour, read as the teeth
   Scene scene(layout);
   EXPECT_EQ(scene.Admit(), 0);
   EXPECT_EQ(scene.Preferred(7), 0);
   EXPECT_EQ(scene.Preferred(8), 0);
+  // Blind to colour, the check would take the gap for a structure in front of the background beyond the teeth.
+  ThinStructureOptions colour_blind;
+  colour_blind.colour_difference = -1.0f;
+  colour_blind.blend_difference = -1.0f;
+  Scene blind(layout);
+  EXPECT_GT(blind.Admit(colour_blind), 0);
 }
 
 // The mixed pixel on the edge between two tiles of a checker is a blend of the two tiles' colours, not a structure
@@ -135,7 +143,7 @@ TEST(OcclusionAlternatives, AWideObjectIsNotAThinStructure) {
 
 TEST(OcclusionAlternatives, VolumesOfAnotherShapeAreAnError) {
   Scene scene(Background());
-  scene.alternatives.along = CostVolume();  // as if the views along the edge had not been built
+  scene.alternatives.along = CostVolume();  // a volume of another shape (empty)
   EXPECT_THROW(scene.Admit(), Error);
 }
 

@@ -105,8 +105,9 @@ struct CostOptions {
 float CostRange(const CostOptions& options);
 
 // The costs of the partial angular patches a pixel near an edge may use instead of the whole one (penalties of
-// CostOptions applied): the cheaper half of the edge's split, and the views along the edge. Infinite at pixels
-// that are not occlusion candidates (and `along` wherever the along-edge views are off).
+// CostOptions applied): the cheaper half of the edge's split, and the views along the edge. Infinite where a pixel
+// may not use them: not an occlusion candidate, or a half of its split without views (and `along` wherever the
+// views along the edge are off or there are none).
 struct OcclusionAlternatives {
   CostVolume half;
   CostVolume along;

@@ -20,8 +20,9 @@ namespace lfsp::depth {
 //
 // So an alternative is refused at a pixel that looks like a thin structure in front of the disparity it prefers:
 // judged on `whole_patch` (the disparity from the whole angular patch alone, which keeps thin structures), the
-// pixel stands nearer than that disparity, and on both sides of it across the edge, within `reach` pixels, lies a
-// pixel of that disparity (within `margin`) whose colour differs from the pixel's by more than `colour_difference`
+// pixel stands nearer than that disparity, and on both sides of it across the edge, within `reach` steps along the
+// edge's normal, lies a pixel at that disparity or behind it (to within `margin`) whose colour differs from the
+// pixel's by more than `colour_difference`
 // (mean |dR|, |dG|, |dB|): the surface behind, seen beside the structure. A pixel in a gap between two occluders has
 // its occluders on both sides instead, and its neighbours in the same gap share its colour, so its patches stay.
 // Nor is the mixed pixel of an edge between two colours a structure: its colour is a blend of the two sides'
@@ -29,7 +30,7 @@ namespace lfsp::depth {
 // floor were taken for structures (1736 refusals, MSE x100 on its ideal light field 1.66 -> 2.72; with it, 80
 // refusals and 1.67).
 struct ThinStructureOptions {
-  int reach = 4;                   // pixels to each side across the edge; 0 = admit every alternative (the old rule)
+  int reach = 4;                   // steps to each side across the edge; 0 = admit every alternative (the old rule)
   float margin = 0.3f;             // px per view step
   float colour_difference = 0.1f;  // measured on layers: 0.05-0.15 alike, 0.2 keeps half the loss, 0.3 all of it
   float blend_difference = 0.05f;  // layers: 0.03-0.05 alike; at 0.1 a picket's mixed pixels pass for blends
