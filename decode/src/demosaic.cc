@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <utility>
 
 #include "lfsp/core/error.h"
@@ -95,42 +96,70 @@ inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp
   out[2] = blue;
 }
 
-// Bilinear interpolation from the 3x3 neighbourhood (rows r[1..3]) over the neighbours under the same micro-lens
-// as the pixel (lens label rows l[1..3]): neighbours across the gap belong to another micro-image, which sees
-// another part of the scene. Falls back to all neighbours when none qualifies.
-struct EdgeRows {
-  const float* const* r;
-  const std::uint8_t* const* l;
-  int x;
-  std::uint8_t lens;
-  float Mean(std::initializer_list<std::pair<int, int>> taps) const {  // (row 1..3, column) pairs
+// Interpolation near a micro-image's edge, from the neighbours under the same micro-lens as the pixel: those across
+// the gap belong to another micro-image, which sees another part of the scene. Rows r[0..4] and lens labels
+// l[0..4] hold rows y-2..y+2, column[0..4] the columns x-2..x+2.
+//
+// A missing channel comes from pairs of neighbours on opposite sides of the pixel. A pair wholly under the lens
+// gives its mean. Where the outer one is missing, the inner one's value alone stands for a point a pixel further
+// in, that is, for another view: taken as it was, it made the F01's outer views ((8, 4), 4 view steps out) read as
+// if sampled a third of a view step towards the centre. So the one-sided estimate adds the pixel's own channel's
+// change from two pixels in (colour differences vary slowly: C(p) - K(p) = C(q) - K(q), with K(q) the mean of K(p)
+// and K two pixels in).
+class EdgeWindow {
+ public:
+  EdgeWindow(const float* const* r, const std::uint8_t* const* l, const int* column)
+      : r_(r), l_(l), column_(column), lens_(l[2][column[2]]) {}
+
+  // The estimate from the pair of neighbours at +-(dy, dx), or nullopt when neither is under the lens.
+  std::optional<float> Pair(int dy, int dx) const {
+    const bool ahead = Inside(dy, dx), behind = Inside(-dy, -dx);
+    if (ahead && behind) return 0.5f * (At(dy, dx) + At(-dy, -dx));
+    if (!ahead && !behind) return std::nullopt;
+    const int s = ahead ? 1 : -1;
+    float estimate = At(s * dy, s * dx);
+    if (Inside(2 * s * dy, 2 * s * dx)) estimate += 0.5f * (At(0, 0) - At(2 * s * dy, 2 * s * dx));
+    return estimate;
+  }
+
+  // The mean of the pairs' estimates; with no neighbour under the lens, the plain mean of all of them.
+  float Mean(std::initializer_list<std::pair<int, int>> directions) const {
     float sum = 0.0f, all = 0.0f;
     int count = 0;
-    for (const auto& [row, column] : taps) {
-      const float value = r[row][column];
-      all += value;
-      if (l[row][column] == lens) {
-        sum += value;
+    for (const auto& [dy, dx] : directions) {
+      all += At(dy, dx) + At(-dy, -dx);
+      if (const std::optional<float> estimate = Pair(dy, dx)) {
+        sum += *estimate;
         ++count;
       }
     }
-    return count > 0 ? sum / static_cast<float>(count) : all / static_cast<float>(taps.size());
+    return count > 0 ? sum / static_cast<float>(count) : all / static_cast<float>(2 * directions.size());
   }
+
+  float Centre() const { return At(0, 0); }
+
+ private:
+  bool Inside(int dy, int dx) const { return l_[2 + dy][column_[2 + dx]] == lens_; }
+  float At(int dy, int dx) const { return r_[2 + dy][column_[2 + dx]]; }
+
+  const float* const* r_;
+  const std::uint8_t* const* l_;
+  const int* column_;
+  std::uint8_t lens_;
 };
 
-inline void EdgeBilinearPixel(const EdgeRows& e, int xm1, int xp1, int colour, int horizontal_colour, float* out) {
-  const int x = e.x;
-  const float c = e.r[2][x];
-  const float horizontal = e.Mean({{2, xm1}, {2, xp1}});
-  const float vertical = e.Mean({{1, x}, {3, x}});
+inline void EdgePixel(const EdgeWindow& e, int colour, int horizontal_colour, float* out) {
+  const float c = e.Centre();
   float red = 0.0f, green = 0.0f, blue = 0.0f;
   if (colour == 1) {
     green = c;
+    const float horizontal = e.Mean({{0, 1}});
+    const float vertical = e.Mean({{1, 0}});
     red = horizontal_colour == 0 ? horizontal : vertical;
     blue = horizontal_colour == 0 ? vertical : horizontal;
   } else {
-    green = e.Mean({{2, xm1}, {2, xp1}, {1, x}, {3, x}});
-    const float opposite = e.Mean({{1, xm1}, {1, xp1}, {3, xm1}, {3, xp1}});
+    green = e.Mean({{0, 1}, {1, 0}});
+    const float opposite = e.Mean({{1, 1}, {1, -1}});
     red = colour == 0 ? c : opposite;
     blue = colour == 0 ? opposite : c;
   }
@@ -170,8 +199,10 @@ cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern, const Micro
       const int colour = (x & 1) ? odd : even, horizontal_colour = (x & 1) ? even : odd;
       if (use_gradient == nullptr || use_gradient[x] != 0)
         GradientPixel(r, x, xm2, xm1, xp1, xp2, colour, horizontal_colour, out + 3 * x);
-      else
-        EdgeBilinearPixel({r, l, x, l[2][x]}, xm1, xp1, colour, horizontal_colour, out + 3 * x);
+      else {
+        const int column[5] = {xm2, xm1, x, xp1, xp2};
+        EdgePixel(EdgeWindow(r, l, column), colour, horizontal_colour, out + 3 * x);
+      }
     };
     auto border = [&](int x) {
       pixel(x, Reflect(x - 2, cols), Reflect(x - 1, cols), Reflect(x + 1, cols), Reflect(x + 2, cols));

@@ -8,8 +8,8 @@
 
 namespace lfsp::decode {
 
-// Demosaicking methods compared by the decoder (tests/decode/demosaic_test.cc measures them on the simulator's
-// captures; the decoder defaults to the best):
+// Demosaicking methods compared by the decoder (tests/decode/decode_test.cc measures them on a simulated capture;
+// the decoder defaults to the best):
 //   kBilinear     OpenCV's bilinear interpolation (on 16-bit data)
 //   kEdgeAware    OpenCV's edge-aware method (COLOR_Bayer*2RGB_EA, on 16-bit data)
 //   kGradient     gradient-corrected bilinear (Malvar, He & Cutler 2004; what MATLAB's demosaic and LFToolbox use),
@@ -28,7 +28,8 @@ struct MicroImages {
 // Demosaics a single-channel float Bayer image (values >= 0, any scale up to `max_value`) into an interleaved RGB
 // float image (CV_32FC3, R first). Parallel. With `micro_images`, kGradient keeps to each micro-image: near its edge
 // it falls back to bilinear over the neighbours under the same lens, so no neighbouring micro-image leaks into the
-// outer views.
+// outer views, and where only the inner one of a pair of neighbours is under the lens, it carries the pixel's own
+// channel's change across (tests/decode/demosaic_test.cc), so the outer views keep their place.
 cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value = 4.0f,
                  const MicroImages* micro_images = nullptr);
 

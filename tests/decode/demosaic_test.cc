@@ -1,0 +1,76 @@
+// The gradient demosaic near a micro-image's edge: the missing channels of a pixel whose outer neighbours lie under
+// the next micro-lens must stand for that pixel's own position. On a colour ramp with constant colour differences
+// the one-sided estimate is exact; copying the inner neighbour instead (as before) is a pixel off, which made the
+// F01's outer views (8, 4) read as if sampled a third of a view step towards the centre.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/core.hpp>
+
+#include "lfsp/decode/demosaic.h"
+
+namespace lfsp::decode {
+namespace {
+
+constexpr int kSize = 40;
+constexpr int kBoundary = 20;  // first row / column under the second micro-lens
+constexpr float kSlope = 0.01f;
+constexpr float kOffset[3] = {0.2f, 0.3f, 0.25f};  // r, g, b at position 0
+constexpr float kNextLens = 5.0f;                  // what the second micro-image holds, far from the ramp
+
+// The ramp's true value of `channel` at the pixel, along x (across a vertical lens boundary) or along y.
+float Ramp(int channel, int x, int y, bool along_x) {
+  return kOffset[channel] + kSlope * static_cast<float>(along_x ? x : y);
+}
+
+// An RGGB Bayer image of the ramp over the first micro-lens and a flat, bright second one, with the labels and a
+// dim white image that sends every pixel through the edge interpolation.
+struct EdgeScene {
+  cv::Mat bayer, labels, white;
+  explicit EdgeScene(bool along_x)
+      : bayer(kSize, kSize, CV_32F), labels(kSize, kSize, CV_8U), white(kSize, kSize, CV_32F, cv::Scalar(0.1)) {
+    constexpr int kTile[4] = {0, 1, 1, 2};  // RGGB
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const bool second_lens = (along_x ? x : y) >= kBoundary;
+        const int channel = kTile[2 * (y & 1) + (x & 1)];
+        labels.at<std::uint8_t>(y, x) = second_lens ? 1 : 0;
+        bayer.at<float>(y, x) = second_lens ? kNextLens : Ramp(channel, x, y, along_x);
+      }
+  }
+};
+
+void CheckEdgeOfFirstLens(bool along_x) {
+  const EdgeScene scene(along_x);
+  const MicroImages micro_images{scene.white, scene.labels};
+  const cv::Mat rgb = Demosaic(scene.bayer, BayerPattern::kRGGB, DemosaicMethod::kGradient, 8.0f, &micro_images);
+  int checked = 0;
+  for (int across = 4; across < kSize - 4; ++across)
+    for (int along = kBoundary - 3; along < kBoundary; ++along) {  // the last pixels before the boundary
+      const int x = along_x ? along : across, y = along_x ? across : along;
+      const cv::Vec3f pixel = rgb.at<cv::Vec3f>(y, x);
+      for (int channel = 0; channel < 3; ++channel) {
+        EXPECT_NEAR(pixel[channel], Ramp(channel, x, y, along_x), 1e-5)
+            << "pixel (" << x << ", " << y << ") channel " << channel;
+        ++checked;
+      }
+    }
+  EXPECT_EQ(checked, 3 * 3 * (kSize - 8));
+}
+
+TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossColumns) { CheckEdgeOfFirstLens(true); }
+TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossRows) { CheckEdgeOfFirstLens(false); }
+
+// Where no neighbour of a pair lies under the pixel's lens, nothing of the next micro-image may come in either.
+TEST(Demosaic, TheNextMicroImageNeverLeaksIn) {
+  const EdgeScene scene(true);
+  const MicroImages micro_images{scene.white, scene.labels};
+  const cv::Mat rgb = Demosaic(scene.bayer, BayerPattern::kRGGB, DemosaicMethod::kGradient, 8.0f, &micro_images);
+  for (int y = 2; y < kSize - 2; ++y)
+    for (int x = 2; x < kBoundary; ++x)
+      for (int channel = 0; channel < 3; ++channel) ASSERT_LT(rgb.at<cv::Vec3f>(y, x)[channel], 1.0f);
+}
+
+}  // namespace
+}  // namespace lfsp::decode
