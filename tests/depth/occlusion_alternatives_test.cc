@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <numbers>
+#include <utility>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -25,21 +27,37 @@ struct Layout {
   std::vector<cv::Vec3f> colour;
 };
 
-// Every pixel an occlusion candidate beside a vertical edge (normal along x). The whole patch prefers each pixel's
+// How the row layout lies in the image: along x (vertical edges, normal along x), along y (horizontal edges, the
+// scene transposed) or along the diagonal (edges running from top right to bottom left, normal at 45 degrees
+// towards +x and +y: the layout's position at pixel (x, y) is (x + y) / 2).
+enum class Orientation { kColumns, kRows, kDiagonal };
+
+// Every pixel an occlusion candidate beside an edge across the layout. The whole patch prefers each pixel's
 // disparity in `layout`; both partial patches prefer the background's.
 struct Scene {
-  explicit Scene(const Layout& layout)
-      : cost(kWidth, kHeight, 3), whole_patch(kWidth, kHeight), centre(kHeight, kWidth, CV_32FC3) {
-    occlusion.candidate = cv::Mat(kHeight, kWidth, CV_8U, cv::Scalar(255));
-    occlusion.split = cv::Mat(kHeight, kWidth, CV_8U, cv::Scalar(0));
-    occlusion.along = cv::Mat(kHeight, kWidth, CV_8U, cv::Scalar(AlongPairForEdgeNormal(0.0)));
-    alternatives.half = CostVolume(kWidth, kHeight, 3, std::numeric_limits<float>::infinity());
-    alternatives.along = CostVolume(kWidth, kHeight, 3, std::numeric_limits<float>::infinity());
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
-        const float d = layout.disparity[static_cast<std::size_t>(x)];
+  explicit Scene(const Layout& layout, Orientation orientation = Orientation::kColumns)
+      : orientation(orientation),
+        width(orientation == Orientation::kColumns ? kWidth
+              : orientation == Orientation::kRows  ? kHeight
+                                                   : kWidth),
+        height(orientation == Orientation::kColumns ? kHeight : kWidth),
+        cost(width, height, 3),
+        whole_patch(width, height),
+        centre(height, width, CV_32FC3) {
+    const double normal = orientation == Orientation::kColumns ? 0.0
+                          : orientation == Orientation::kRows  ? std::numbers::pi / 2
+                                                               : std::numbers::pi / 4;
+    occlusion.candidate = cv::Mat(height, width, CV_8U, cv::Scalar(255));
+    occlusion.split = cv::Mat(height, width, CV_8U, cv::Scalar(0));
+    occlusion.along = cv::Mat(height, width, CV_8U, cv::Scalar(AlongPairForEdgeNormal(normal)));
+    alternatives.half = CostVolume(width, height, 3, std::numeric_limits<float>::infinity());
+    alternatives.along = CostVolume(width, height, 3, std::numeric_limits<float>::infinity());
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const auto position = static_cast<std::size_t>(Position(x, y));
+        const float d = layout.disparity[position];
         whole_patch.at(y, x) = d;
-        centre.at<cv::Vec3f>(y, x) = layout.colour[static_cast<std::size_t>(x)];
+        centre.at<cv::Vec3f>(y, x) = layout.colour[position];
         for (int l = 0; l < 3; ++l) {
           cost.Curve(y, x)[l] = kDisparities[static_cast<std::size_t>(l)] == d ? 0.3f : 0.6f;
           alternatives.half.Curve(y, x)[l] = l == 0 ? 0.1f : 0.7f;
@@ -48,15 +66,33 @@ struct Scene {
       }
     }
   }
-  // The label the pixel's curve now prefers.
-  int Preferred(int x) const {
-    const float* curve = cost.Curve(1, x);
+  // The layout's position at pixel (x, y).
+  int Position(int x, int y) const {
+    switch (orientation) {
+      case Orientation::kColumns:
+        return x;
+      case Orientation::kRows:
+        return y;
+      case Orientation::kDiagonal:
+        return (x + y) / 2;
+    }
+    return x;
+  }
+  // The label the curve at pixel (x, y) now prefers.
+  int PreferredAt(int x, int y) const {
+    const float* curve = cost.Curve(y, x);
     return static_cast<int>(std::min_element(curve, curve + 3) - curve);
+  }
+  // The same in the middle line across a column or row layout, at `position`.
+  int Preferred(int position) const {
+    return orientation == Orientation::kRows ? PreferredAt(1, position) : PreferredAt(position, 1);
   }
   int Admit(const ThinStructureOptions& options = {}) {
     return AdmitOcclusionAlternatives(cost, alternatives, whole_patch, kDisparities, occlusion, centre, options);
   }
 
+  Orientation orientation;
+  int width, height;
   CostVolume cost;
   OcclusionAlternatives alternatives;
   DisparityMap whole_patch;
@@ -84,6 +120,31 @@ TEST(OcclusionAlternatives, AThinStructureInFrontKeepsItsDisparity) {
   EXPECT_EQ(scene.Preferred(8), 2);
   EXPECT_EQ(refused, 2 * 2 * kHeight);  // both patches, both columns, every row
   EXPECT_EQ(scene.Preferred(3), 0);     // the background's patches are admitted
+}
+
+// The same picket lying flat (a rail): the check walks across the edge, here along y. An edge normal a quarter
+// turn off would walk along the rail and find no surface behind within the 3 px wide image.
+TEST(OcclusionAlternatives, AThinRailInFrontKeepsItsDisparity) {
+  Layout layout = Background();
+  Paint(layout, 7, 9, 1.0f, kRed);
+  Scene scene(layout, Orientation::kRows);
+  EXPECT_EQ(scene.Admit(), 2 * 2 * kHeight);
+  EXPECT_EQ(scene.Preferred(7), 2);
+  EXPECT_EQ(scene.Preferred(8), 2);
+  EXPECT_EQ(scene.Preferred(3), 0);
+}
+
+// A slanted picket (positions 7 and 8: x + y from 14 to 17, about 3 px across). An edge normal mirrored in y, (1, -1)
+// instead of (1, 1), would walk along it.
+TEST(OcclusionAlternatives, ASlantedPicketInFrontKeepsItsDisparity) {
+  Layout layout = Background();
+  Paint(layout, 7, 9, 1.0f, kRed);
+  Scene scene(layout, Orientation::kDiagonal);
+  EXPECT_GT(scene.Admit(), 0);
+  for (const auto& [x, y] : {std::pair{7, 7}, std::pair{8, 8}, std::pair{9, 6}, std::pair{6, 10}})
+    EXPECT_EQ(scene.PreferredAt(x, y), 2) << "(" << x << ", " << y << ")";
+  EXPECT_EQ(scene.PreferredAt(3, 3), 0);
+  EXPECT_EQ(scene.PreferredAt(12, 12), 0);
 }
 
 TEST(OcclusionAlternatives, WithoutTheCheckEveryPatchIsAdmitted) {
