@@ -105,7 +105,7 @@ inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp
 // in, that is, for another view: taken as it was, it made the F01's outer views ((8, 4), 4 view steps out) read as
 // if sampled a third of a view step towards the centre. So the one-sided estimate adds the pixel's own channel's
 // change from two pixels in (colour differences vary slowly: C(p) - K(p) = C(q) - K(q), with K(q) the mean of K(p)
-// and K two pixels in).
+// and K two pixels in); where that pixel is under another lens too, the inner neighbour's value stands alone.
 class EdgeWindow {
  public:
   EdgeWindow(const float* const* r, const std::uint8_t* const* l, const int* column)

@@ -24,30 +24,35 @@ float Ramp(int channel, int x, int y, bool along_x) {
   return kOffset[channel] + kSlope * static_cast<float>(along_x ? x : y);
 }
 
-// An RGGB Bayer image of the ramp over the first micro-lens and a flat, bright second one, with the labels and a
-// dim white image that sends every pixel through the edge interpolation.
+// An RGGB Bayer image of the ramp over one micro-lens and a flat, bright neighbouring one, with the labels and a dim
+// white image that sends every pixel through the edge interpolation. The ramp's lens lies before the boundary
+// (missing neighbours on the +x / +y side) or, `ramp_beyond`, after it (on the -x / -y side).
 struct EdgeScene {
   cv::Mat bayer, labels, white;
-  explicit EdgeScene(bool along_x)
+  EdgeScene(bool along_x, bool ramp_beyond)
       : bayer(kSize, kSize, CV_32F), labels(kSize, kSize, CV_8U), white(kSize, kSize, CV_32F, cv::Scalar(0.1)) {
     constexpr int kTile[4] = {0, 1, 1, 2};  // RGGB
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
-        const bool second_lens = (along_x ? x : y) >= kBoundary;
+        const bool beyond = (along_x ? x : y) >= kBoundary;
         const int channel = kTile[2 * (y & 1) + (x & 1)];
-        labels.at<std::uint8_t>(y, x) = second_lens ? 1 : 0;
-        bayer.at<float>(y, x) = second_lens ? kNextLens : Ramp(channel, x, y, along_x);
+        labels.at<std::uint8_t>(y, x) = beyond ? 1 : 0;
+        bayer.at<float>(y, x) = beyond == ramp_beyond ? Ramp(channel, x, y, along_x) : kNextLens;
       }
+  }
+  cv::Mat Demosaicked() const {
+    const MicroImages micro_images{white, labels};
+    return Demosaic(bayer, BayerPattern::kRGGB, DemosaicMethod::kGradient, 8.0f, &micro_images);
   }
 };
 
-void CheckEdgeOfFirstLens(bool along_x) {
-  const EdgeScene scene(along_x);
-  const MicroImages micro_images{scene.white, scene.labels};
-  const cv::Mat rgb = Demosaic(scene.bayer, BayerPattern::kRGGB, DemosaicMethod::kGradient, 8.0f, &micro_images);
+// The three pixels of the ramp's lens nearest the boundary, along every line across it, in every channel.
+void CheckEdgeOfTheRampsLens(bool along_x, bool ramp_beyond) {
+  const cv::Mat rgb = EdgeScene(along_x, ramp_beyond).Demosaicked();
+  const int first = ramp_beyond ? kBoundary : kBoundary - 3;
   int checked = 0;
   for (int across = 4; across < kSize - 4; ++across)
-    for (int along = kBoundary - 3; along < kBoundary; ++along) {  // the last pixels before the boundary
+    for (int along = first; along < first + 3; ++along) {
       const int x = along_x ? along : across, y = along_x ? across : along;
       const cv::Vec3f pixel = rgb.at<cv::Vec3f>(y, x);
       for (int channel = 0; channel < 3; ++channel) {
@@ -59,16 +64,22 @@ void CheckEdgeOfFirstLens(bool along_x) {
   EXPECT_EQ(checked, 3 * 3 * (kSize - 8));
 }
 
-TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossColumns) { CheckEdgeOfFirstLens(true); }
-TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossRows) { CheckEdgeOfFirstLens(false); }
+TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossColumns) {
+  CheckEdgeOfTheRampsLens(true, false);
+  CheckEdgeOfTheRampsLens(true, true);
+}
+TEST(Demosaic, PixelsBesideTheNextMicroLensKeepTheirOwnPositionAcrossRows) {
+  CheckEdgeOfTheRampsLens(false, false);
+  CheckEdgeOfTheRampsLens(false, true);
+}
 
-// Where no neighbour of a pair lies under the pixel's lens, nothing of the next micro-image may come in either.
-TEST(Demosaic, TheNextMicroImageNeverLeaksIn) {
-  const EdgeScene scene(true);
-  const MicroImages micro_images{scene.white, scene.labels};
-  const cv::Mat rgb = Demosaic(scene.bayer, BayerPattern::kRGGB, DemosaicMethod::kGradient, 8.0f, &micro_images);
-  for (int y = 2; y < kSize - 2; ++y)
-    for (int x = 2; x < kBoundary; ++x)
+// Away from the boundary too (the whole image goes through the edge interpolation here), no value of the next
+// micro-image (5) reaches a pixel of the ramp's lens (values below 1): every pair there has a neighbour under the
+// pixel's own lens.
+TEST(Demosaic, TheNextMicroImageStaysOut) {
+  const cv::Mat rgb = EdgeScene(true, false).Demosaicked();
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kBoundary; ++x)
       for (int channel = 0; channel < 3; ++channel) ASSERT_LT(rgb.at<cv::Vec3f>(y, x)[channel], 1.0f);
 }
 

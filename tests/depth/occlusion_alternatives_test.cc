@@ -21,7 +21,8 @@ const std::vector<float> kDisparities = {-1.0f, 0.0f, 1.0f};  // background, -, 
 const cv::Vec3f kGrey(0.5f, 0.5f, 0.5f);
 const cv::Vec3f kRed(0.9f, 0.1f, 0.1f);
 
-// A row layout: for each column, the whole patch's disparity and the centre view's colour.
+// A layout across the edges: for each position, the whole patch's disparity and the centre view's colour (Scene
+// lays it out along x, along y or along the diagonal).
 struct Layout {
   std::vector<float> disparity;
   std::vector<cv::Vec3f> colour;
@@ -103,7 +104,7 @@ struct Scene {
 // Every column grey background at -1.
 Layout Background() { return {std::vector<float>(kWidth, -1.0f), std::vector<cv::Vec3f>(kWidth, kGrey)}; }
 
-// Columns [begin, end) set to disparity d and colour c.
+// Positions [begin, end) set to disparity d and colour c.
 void Paint(Layout& layout, int begin, int end, float d, const cv::Vec3f& c) {
   for (int x = begin; x < end; ++x) {
     layout.disparity[static_cast<std::size_t>(x)] = d;
@@ -128,7 +129,7 @@ TEST(OcclusionAlternatives, AThinRailInFrontKeepsItsDisparity) {
   Layout layout = Background();
   Paint(layout, 7, 9, 1.0f, kRed);
   Scene scene(layout, Orientation::kRows);
-  EXPECT_EQ(scene.Admit(), 2 * 2 * kHeight);
+  EXPECT_EQ(scene.Admit(), 2 * 2 * scene.width);  // both patches, both rows of the rail, every column
   EXPECT_EQ(scene.Preferred(7), 2);
   EXPECT_EQ(scene.Preferred(8), 2);
   EXPECT_EQ(scene.Preferred(3), 0);
@@ -140,7 +141,8 @@ TEST(OcclusionAlternatives, ASlantedPicketInFrontKeepsItsDisparity) {
   Layout layout = Background();
   Paint(layout, 7, 9, 1.0f, kRed);
   Scene scene(layout, Orientation::kDiagonal);
-  EXPECT_GT(scene.Admit(), 0);
+  // Both patches of the picket's 60 pixels but the 10 whose walk leaves the image before it meets the background.
+  EXPECT_EQ(scene.Admit(), 2 * 50);
   for (const auto& [x, y] : {std::pair{7, 7}, std::pair{8, 8}, std::pair{9, 6}, std::pair{6, 10}})
     EXPECT_EQ(scene.PreferredAt(x, y), 2) << "(" << x << ", " << y << ")";
   EXPECT_EQ(scene.PreferredAt(3, 3), 0);

@@ -9,10 +9,11 @@
 //  - colour: in camera colour, the centre view's mean per channel (taken back to linear, over the truth) agree to
 //    5 %, and under 1 % of its samples are clipped at black.
 // These failed before the fixes they test: outer views were displaced by up to 0.28 px (the demosaic reached the
-// neighbouring micro-image), the F01's rim views (8, 3..5) by 0.08 px (the demosaic copied the inner neighbour's
-// value where the outer one lies under the next micro-lens: those views read as if sampled a third of a view step
-// towards the centre), strips at integer disparities were read 0.08 px off (noise-driven interpolation bias
-// of the matching cost), and camera colour clipped every blue sample (the sensor ignored the colour matrix).
+// neighbouring micro-image); the F01's rim views (8, 3..5) by 0.08 px as a whole, and (0, 4) and (8, 4) by a third
+// of the disparity strip by strip, as if sampled a third of a view step towards the centre (the demosaic copied
+// the inner neighbour's value where the outer one lies under the next micro-lens); strips at integer disparities
+// were read 0.08 px off (noise-driven interpolation bias of the matching cost); and camera colour clipped every
+// blue sample (the sensor ignored the colour matrix).
 
 #include <gtest/gtest.h>
 
