@@ -97,7 +97,7 @@ std::optional<TruthComparison> AttachSimulatorGroundTruth(const fs::path& captur
   decoded.disparity = std::move(truth.disparity);
   decoded.labels = std::move(truth.labels);
   spdlog::info("ground truth: {}", truth_path.string());
-  TruthComparison comparison = CompareWithTruth(decoded.light_field, truth.light_field);
+  TruthComparison comparison = CompareWithTruth(decoded.light_field, truth.light_field, decoded.disparity);
   spdlog::info(
       "decoded against the ideal light field: {} views registered (mean weight > {}), worst shift {:.3f} px; "
       "centre view PSNR {:.2f} dB",

@@ -59,16 +59,20 @@ report::Section DepthSection(const ReportInputs& inputs) {
 
 report::Section TruthComparisonSection(const TruthComparison& comparison) {
   report::Section section{"Decoded against the ideal light field", {}, {}};
-  char caption[256];
+  char caption[384];
   std::snprintf(caption, sizeof caption,
                 "mean over channels of |gain x decoded - ideal| in linear light (one gain per channel), TURBO over "
                 "0 .. %.2f; RMS %.4f, PSNR %.2f dB",
                 kErrorPictureTop, comparison.centre_rms, comparison.centre_psnr_db);
   section.figures.push_back({"Centre-view error", caption, CentreErrorPicture(comparison)});
+  char away[64] = "";
+  if (comparison.depth_edge_margin_px > 0)
+    std::snprintf(away, sizeof away, ", %d px or more from the truth's depth edges", comparison.depth_edge_margin_px);
   std::snprintf(caption, sizeof caption,
                 "one cell per view (u right, v down): the larger of |dx|, |dy| registering the decoded view on the "
-                "ideal one, TURBO over 0 .. %.2f px; black: mean weight <= %.1f. %d views, worst %.3f px",
-                kRegistrationPictureTop, TruthComparison::kRegisteredWeight, comparison.registration.registered,
+                "ideal one in linear light%s, TURBO over 0 .. %.2f px; black: mean weight <= %.1f. %d views, worst "
+                "%.3f px",
+                away, kRegistrationPictureTop, TruthComparison::kRegisteredWeight, comparison.registration.registered,
                 comparison.registration.worst);
   section.figures.push_back({"Per-view registration", caption, RegistrationPicture(comparison)});
   return section;

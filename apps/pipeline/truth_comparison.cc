@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "lfsp/core/visualize.h"
+#include "lfsp/depth/metrics.h"
 
 namespace lfsp::pipeline {
 namespace {
@@ -47,13 +48,35 @@ cv::Mat ColourMapped(const cv::Mat& values, float top) {
   return ColourMapDisparity(map, DisparityRange{0.0f, top});
 }
 
+// The pixels farther than `margin` from every depth edge of the truth (a step of more than 0.1 px per view step
+// between neighbours), where a view differs from the centre view by a shift alone. The margin is the largest parallax
+// across the scene's depth range between the centre view and the outermost one, plus 2 px, at most 16.
+struct DepthEdgeMask {
+  cv::Mat mask;  // empty: no mask (no truth, or it would leave under a quarter of the pixels)
+  int margin = 0;
+};
+DepthEdgeMask AwayFromDepthEdges(const std::optional<DisparityMap>& disparity, int half_views) {
+  if (!disparity) return {};
+  double low = 0.0, high = 0.0;
+  cv::minMaxLoc(disparity->Mat(), &low, &high);
+  if (!std::isfinite(low) || !std::isfinite(high)) return {};
+  const int margin = std::min(16, static_cast<int>(std::ceil(half_views * (high - low))) + 2);
+  cv::Mat mask;
+  cv::bitwise_not(depth::DiscontinuityRegion(*disparity, 0.1, margin), mask);
+  if (4 * static_cast<std::size_t>(cv::countNonZero(mask)) < mask.total()) return {};
+  return {mask, margin};
+}
+
 }  // namespace
 
-TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth) {
+TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth,
+                                 const std::optional<DisparityMap>& truth_disparity) {
   TruthComparison comparison;
   comparison.nu = truth.shape().nu;
   comparison.nv = truth.shape().nv;
-  comparison.registration = RegisterViews(decoded, truth, TruthComparison::kRegisteredWeight, 20);
+  const DepthEdgeMask away = AwayFromDepthEdges(truth_disparity, std::max(comparison.nu, comparison.nv) / 2);
+  comparison.depth_edge_margin_px = away.margin;
+  comparison.registration = RegisterViews(decoded, truth, TruthComparison::kRegisteredWeight, 20, away.mask);
   const ViewIndex centre = truth.shape().Centre();
   comparison.centre_error = CentreError(decoded.View(centre), decoded.transfer, truth.View(centre), truth.transfer);
   const double mean_square = cv::mean(comparison.centre_error.mul(comparison.centre_error))[0];
@@ -75,6 +98,7 @@ nlohmann::ordered_json ToJson(const TruthComparison& comparison) {
   return {{"centre_view", {{"mean_abs_error_rms", comparison.centre_rms}, {"psnr_db", comparison.centre_psnr_db}}},
           {"registration",
            {{"min_weight", TruthComparison::kRegisteredWeight},
+            {"depth_edge_margin_px", comparison.depth_edge_margin_px},
             {"views_registered", comparison.registration.registered},
             {"worst_shift_px", comparison.registration.worst},
             {"views", views}}}};

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/registration.h"
@@ -15,12 +16,16 @@ namespace lfsp::pipeline {
 struct TruthComparison {
   static constexpr double kRegisteredWeight = 0.5;
   ViewRegistration registration;
+  // The registration leaves out pixels this close to a depth edge of the truth (0: none left out), where the views
+  // differ by what each occludes rather than by a shift.
+  int depth_edge_margin_px = 0;
   int nu = 0, nv = 0;
   cv::Mat centre_error;  // CV_32FC1, mean over channels of |gain * decoded - truth|
   double centre_rms = 0.0;
   double centre_psnr_db = 0.0;
 };
-TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth);
+TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth,
+                                 const std::optional<DisparityMap>& truth_disparity);
 
 nlohmann::ordered_json ToJson(const TruthComparison& comparison);
 

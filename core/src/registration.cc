@@ -8,6 +8,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/parallel_for.h"
+#include "lfsp/core/srgb.h"
 #include "lfsp/core/view_crop.h"
 
 namespace lfsp {
@@ -15,7 +16,7 @@ namespace lfsp {
 namespace {
 
 // One least-squares step: the translation, gain and offset taking `reference` to `moving`, to first order.
-cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int margin) {
+cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int margin, const cv::Mat& mask) {
   // Unknowns: dx, dy, gain - 1, offset. moving - reference = -gx dx - gy dy + reference (gain - 1) + offset.
   cv::Matx44d normal = cv::Matx44d::zeros();
   cv::Vec4d right(0, 0, 0, 0);
@@ -24,7 +25,9 @@ cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int ma
     const float* row = reference.ptr<float>(y);
     const float* down = reference.ptr<float>(y + 1);
     const float* other = moving.ptr<float>(y);
+    const unsigned char* used = mask.empty() ? nullptr : mask.ptr<unsigned char>(y);
     for (int x = margin; x < reference.cols - margin; ++x) {
+      if (used != nullptr && used[x] == 0) continue;
       const cv::Vec4d a(-0.5 * (row[x + 1] - row[x - 1]), -0.5 * (down[x] - up[x]), row[x], 1.0);
       const double b = other[x] - row[x];
       normal += a * a.t();
@@ -39,14 +42,16 @@ cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int ma
 
 }  // namespace
 
-Shift2D MeasureShift(const cv::Mat& reference, const cv::Mat& moving, int margin) {
+Shift2D MeasureShift(const cv::Mat& reference, const cv::Mat& moving, int margin, const cv::Mat& mask) {
   if (reference.type() != CV_32FC1 || moving.type() != CV_32FC1 || reference.size() != moving.size())
     throw Error("measure shift: expected two single-channel float images of one size");
+  if (!mask.empty() && (mask.type() != CV_8UC1 || mask.size() != reference.size()))
+    throw Error("measure shift: the mask must be an 8-bit single-channel image of the images' size");
   if (margin < 1 || 2 * margin + 2 >= std::min(reference.rows, reference.cols))
     throw Error("measure shift: the margin leaves no pixels");
   // The fitted shift comes scaled by the gain (moving ~ gain (reference - g.d) + offset): divided out, a 0.12 px
   // shift read through a gain of 1.1 comes back as 0.122 (0.134 before).
-  const cv::Vec4d solution = LinearisedStep(reference, moving, margin);
+  const cv::Vec4d solution = LinearisedStep(reference, moving, margin, mask);
   Shift2D shift;
   shift.dx = solution[0] / (1.0 + solution[2]);
   shift.dy = solution[1] / (1.0 + solution[2]);
@@ -59,7 +64,22 @@ cv::Mat GreyOf(const cv::Mat& rgb) {
   return grey;
 }
 
-ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin) {
+cv::Mat LinearGreyOf(const cv::Mat& rgb, Transfer transfer) {
+  if (transfer == Transfer::kLinear) return GreyOf(rgb);
+  cv::Mat grey(rgb.rows, rgb.cols, CV_32FC1);
+  for (int y = 0; y < rgb.rows; ++y) {
+    const float* in = rgb.ptr<float>(y);
+    float* out = grey.ptr<float>(y);
+    for (int x = 0; x < rgb.cols; ++x)
+      out[x] = (SrgbToLinearTabulated(in[3 * x]) + SrgbToLinearTabulated(in[3 * x + 1]) +
+                SrgbToLinearTabulated(in[3 * x + 2])) /
+               3.0f;
+  }
+  return grey;
+}
+
+ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin,
+                               const cv::Mat& mask) {
   if (decoded.shape() != truth.shape())
     throw Error("register views: the light fields differ in shape (" + ToString(decoded.shape()) + " and " +
                 ToString(truth.shape()) + ")");
@@ -73,7 +93,8 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
     entry.view = ViewFromCameraNumber(cam, shape.nu);
     entry.weight = MeanViewWeight(truth, entry.view);
     if (entry.weight <= min_weight) return;
-    entry.shift = MeasureShift(GreyOf(truth.View(entry.view)), GreyOf(decoded.View(entry.view)), margin);
+    entry.shift = MeasureShift(LinearGreyOf(truth.View(entry.view), truth.transfer),
+                               LinearGreyOf(decoded.View(entry.view), decoded.transfer), margin, mask);
     entry.registered = true;
   });
   for (const ViewShift& entry : result.views) {

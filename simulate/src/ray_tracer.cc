@@ -10,20 +10,6 @@
 namespace lfsp::simulate {
 namespace {
 
-constexpr int kLinearTableSize = 4096;
-
-const std::vector<float>& LinearTable() {
-  static const std::vector<float> table = [] {
-    std::vector<float> t(kLinearTableSize + 1);
-    for (int i = 0; i <= kLinearTableSize; ++i) {
-      const double v = static_cast<double>(i) / kLinearTableSize;
-      t[static_cast<std::size_t>(i)] = static_cast<float>(lfsp::SrgbToLinear(v));  // the exact curve
-    }
-    return t;
-  }();
-  return table;
-}
-
 bool PointInPolygon(const std::vector<std::array<float, 2>>& polygon, float x, float y) {
   bool inside = false;
   const std::size_t n = polygon.size();
@@ -36,14 +22,6 @@ bool PointInPolygon(const std::vector<std::array<float, 2>>& polygon, float x, f
 }
 
 }  // namespace
-
-float SrgbToLinear(float value) {
-  const auto& table = LinearTable();
-  const float f = std::clamp(value, 0.0f, 1.0f) * kLinearTableSize;
-  const int i = std::min(static_cast<int>(f), kLinearTableSize - 1);
-  const float w = f - static_cast<float>(i);
-  return table[static_cast<std::size_t>(i)] * (1.0f - w) + table[static_cast<std::size_t>(i) + 1] * w;
-}
 
 RayTracer::RayTracer(const Scene& scene, int width, int height, float disparity_scale, float max_view_offset,
                      Transfer transfer)
@@ -240,7 +218,7 @@ Rgb RayTracer::Shade(const RayHit& hit, float s, float t) const {
     Rgb colour =
         ShadeBoard(objects_[static_cast<std::size_t>(prepared_of_[static_cast<std::size_t>(hit.object)])], hit);
     if (transfer_ == Transfer::kLinear)
-      for (auto& c : colour) c = SrgbToLinear(c);
+      for (auto& c : colour) c = SrgbToLinearTabulated(c);
     return colour;
   }
   Rgb colour = object.texture.Evaluate((hit.x + 0.5f) / min_side_, (hit.y + 0.5f) / min_side_);
@@ -254,7 +232,7 @@ Rgb RayTracer::Shade(const RayHit& hit, float s, float t) const {
     for (auto& c : colour) c = std::min(1.0f, c + g);
   }
   if (transfer_ == Transfer::kLinear)
-    for (auto& c : colour) c = SrgbToLinear(c);
+    for (auto& c : colour) c = SrgbToLinearTabulated(c);
   return colour;
 }
 

@@ -63,7 +63,4 @@ class RayTracer {
   std::vector<std::vector<int>> cells_;
 };
 
-// sRGB-encoded value -> linear, through a small table (fast enough for per-ray use).
-float SrgbToLinear(float value);
-
 }  // namespace lfsp::simulate

@@ -106,6 +106,50 @@ TEST(MeasureShift, RecoversASubPixelTranslation) {
   EXPECT_NEAR(shift.dy, -0.07, 0.01);
 }
 
+// Only the mask's pixels count: the right half, moved by another amount, does not pull the left half's shift.
+TEST(MeasureShift, KeepsToTheMask) {
+  cv::Mat reference(64, 64, CV_32F), moving(64, 64, CV_32F), mask(64, 64, CV_8U, cv::Scalar(0));
+  auto pattern = [](double x, double y) {
+    return static_cast<float>(0.5 + 0.2 * std::sin(0.3 * x) * std::cos(0.23 * y));
+  };
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      reference.at<float>(y, x) = pattern(x, y);
+      moving.at<float>(y, x) = pattern(x - (x < 32 ? 0.1 : 0.6), y);
+      if (x < 28) mask.at<unsigned char>(y, x) = 255;
+    }
+  EXPECT_NEAR(MeasureShift(reference, moving, 4, mask).dx, 0.1, 0.01);
+  EXPECT_GT(MeasureShift(reference, moving, 4).dx, 0.2);  // without the mask the two halves mix
+  EXPECT_THROW(MeasureShift(reference, moving, 4, cv::Mat(32, 32, CV_8U, cv::Scalar(255))), Error);
+}
+
+// An sRGB-encoded decode registers against a linear truth in linear light: the curve moves a blurred step edge's
+// steepest point towards its dark side, which compared as it is reads as a shift.
+TEST(RegisterViews, ComparesInLinearLight) {
+  LightField truth(LightFieldShape{3, 3, 64, 64, 3});
+  truth.transfer = Transfer::kLinear;
+  truth.EnableWeights();
+  LightField decoded(truth.shape());
+  decoded.transfer = Transfer::kSrgb;
+  auto linear = [](double x, double y) {
+    return static_cast<float>(0.02 + 0.6 / (1.0 + std::exp(-(x - 32.0) / 2.0)) + 0.01 * std::sin(0.5 * y));
+  };
+  for (int v = 0; v < 3; ++v)
+    for (int u = 0; u < 3; ++u)
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          for (int c = 0; c < 3; ++c) {
+            truth.View({u, v}).at<cv::Vec3f>(y, x)[c] = linear(x, y);
+            decoded.View({u, v}).at<cv::Vec3f>(y, x)[c] = LinearToSrgb(linear(x, y));
+          }
+  const ViewRegistration registration = RegisterViews(decoded, truth, 0.5, 4);
+  EXPECT_EQ(registration.registered, 9);
+  EXPECT_LT(registration.worst, 0.005);
+  // Compared as encoded, the same views read far off.
+  const Shift2D encoded = MeasureShift(GreyOf(truth.View({1, 1})), GreyOf(decoded.View({1, 1})), 4);
+  EXPECT_GT(std::abs(encoded.dx), 0.1);
+}
+
 // Every well-lit view registered; a decode displaced by a known amount in one view reads that amount there.
 TEST(RegisterViews, MeasuresEachWellLitViewAndSkipsTheDimOnes) {
   LightField truth(LightFieldShape{5, 5, 64, 64, 3});

@@ -36,12 +36,10 @@ enum class Orientation { kColumns, kRows, kDiagonal };
 // Every pixel an occlusion candidate beside an edge across the layout. The whole patch prefers each pixel's
 // disparity in `layout`; both partial patches prefer the background's.
 struct Scene {
-  explicit Scene(const Layout& layout, Orientation orientation = Orientation::kColumns)
-      : orientation(orientation),
-        width(orientation == Orientation::kColumns ? kWidth
-              : orientation == Orientation::kRows  ? kHeight
-                                                   : kWidth),
-        height(orientation == Orientation::kColumns ? kHeight : kWidth),
+  explicit Scene(const Layout& layout, Orientation lying = Orientation::kColumns)
+      : orientation(lying),
+        width(lying == Orientation::kRows ? kHeight : kWidth),
+        height(lying == Orientation::kColumns ? kHeight : kWidth),
         cost(width, height, 3),
         whole_patch(width, height),
         centre(height, width, CV_32FC3) {

@@ -11,18 +11,24 @@ namespace lfsp {
 // squares on the reference's gradients (first-order Lucas-Kanade, with a gain and an offset fitted too, so an
 // exposure difference does not read as a shift). Both are single-channel float images of one size; `margin`
 // pixels at each border are left out. Accurate for shifts well below a pixel: it measures how two renderings of
-// the same view differ, not a disparity.
+// the same view differ, not a disparity. With `mask` (CV_8U, the images' size), only its nonzero pixels count.
 struct Shift2D {
   double dx = 0.0;
   double dy = 0.0;
 };
-Shift2D MeasureShift(const cv::Mat& reference, const cv::Mat& moving, int margin);
+Shift2D MeasureShift(const cv::Mat& reference, const cv::Mat& moving, int margin, const cv::Mat& mask = cv::Mat());
 
 // The mean of the three channels of an RGB float view, for MeasureShift.
 cv::Mat GreyOf(const cv::Mat& rgb);
 
+// The same in linear light: an sRGB-encoded view is decoded first. A gain and an offset cannot absorb the sRGB
+// curve, so comparing an encoded view with a linear one would read its brightness changes as shifts.
+cv::Mat LinearGreyOf(const cv::Mat& rgb, Transfer transfer);
+
 // Every view of a decoded light field registered against the same view of its ideal light field (MeasureShift on
-// grey views), for the views whose mean weight in the ideal one is above `min_weight`; the others are skipped.
+// linear grey views, each decoded by its light field's transfer), for the views whose mean weight in the ideal one is
+// above `min_weight`; the others are skipped. With `mask` (CV_8U, the views' size), only its nonzero pixels count:
+// near depth edges the views differ by what each occludes, which a single shift cannot describe.
 struct ViewShift {
   ViewIndex view;
   double weight = 0.0;  // mean weight of the view in the ideal light field
@@ -34,6 +40,7 @@ struct ViewRegistration {
   int registered = 0;
   double worst = 0.0;  // largest |dx| or |dy| over the registered views, px
 };
-ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin);
+ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin,
+                               const cv::Mat& mask = cv::Mat());
 
 }  // namespace lfsp
