@@ -5,7 +5,8 @@
 //  - geometry: every view whose mean weight is above 0.5 (issue 12's rule) registers against the ideal view of the
 //    same (u, v) to 0.05 px. Measured worst: Illum 0.046 px, F01 0.038 px;
 //  - depth: on the views the decoder's weights choose, each strip's mean disparity is within 0.02 px of the truth
-//    (0.075 px when the noisy capture is decoded without its white image; 0.025 px on the noisy F01 capture, below);
+//    (0.075 px when the noisy capture is decoded without its white image; 0.025 px on the noisy F01 capture's
+//    outermost strips, below);
 //  - colour: in camera colour, the centre view's mean per channel (taken back to linear, over the truth) agree to
 //    5 %, and under 1 % of its samples are clipped at black.
 // These failed before the fixes they test: outer views were displaced by up to 0.28 px (the demosaic reached the
@@ -94,7 +95,9 @@ void CheckRegistration(const LightField& decoded, const LightField& truth, const
   EXPECT_GT(registration.registered, 20) << what;
 }
 
-void CheckStripDisparities(LightField decoded, const std::string& what, double tolerance = 0.02) {
+// `outer_tolerance` applies to the outermost strips (d = +-1.5), `tolerance` to the others.
+void CheckStripDisparities(LightField decoded, const std::string& what, double tolerance = 0.02,
+                           double outer_tolerance = 0.02) {
   std::optional<Labels> no_labels;
   const ViewChoice views = ChooseViews(decoded);
   KeepCentralViews(decoded, no_labels, views.n);
@@ -111,7 +114,8 @@ void CheckStripDisparities(LightField decoded, const std::string& what, double t
       for (int x = x0; x < x1; ++x, ++count) sum += result.disparity.at(y, x);
     const double mean = sum / static_cast<double>(count);
     std::printf("%s (%s): strip d = %+.1f reads %+.4f\n", what.c_str(), views.reason.c_str(), kStripDisparity[k], mean);
-    EXPECT_NEAR(mean, kStripDisparity[k], tolerance) << what << " strip " << k;
+    const bool outer = std::abs(kStripDisparity[k]) == 1.5f;
+    EXPECT_NEAR(mean, kStripDisparity[k], outer ? outer_tolerance : tolerance) << what << " strip " << k;
   }
 }
 
@@ -124,15 +128,17 @@ void CheckCamera(const std::string& camera) {
     const LightField truth = ReadBundle(capture.folder / "ground_truth" / "decoded.h5").light_field;
     const LightField linear = Decode(capture, decode::ColourMode::kLinear);
     if (!noise) CheckRegistration(linear, truth, what);
-    // Sensor noise pulls the noisy F01 capture's depth up to 0.021 px off (strip d = -1.5 reads -1.5214 with this
-    // seed, -1.516 and -1.520 with seeds 2 and 3; the noise-free capture reads -1.5014). It is the depth's, not the
-    // decode's: white noise added to the noise-free decode moves the same strips outwards, and with the strips
-    // rearranged the old decoder's noisy capture read d = -0.5 as -0.526. Issue 12 asks 0.02; still open.
-    CheckStripDisparities(linear, what, noise && camera == "f01" ? 0.025 : 0.02);
+    // Sensor noise pulls the noisy F01 capture's outermost strips up to 0.021 px off (d = -1.5 reads -1.5214 with
+    // this seed, -1.516 and -1.520 with seeds 2 and 3; the noise-free capture reads -1.5014). It is the depth's, not
+    // the decode's: white noise added to the noise-free decode moves the same strips outwards, and with the strips
+    // rearranged the old decoder's noisy capture read d = -0.5 as -0.526. Issue 12 asks 0.02 of every strip; only
+    // these two are allowed 0.025, still open. The other five read within 0.007.
+    CheckStripDisparities(linear, what, 0.02, noise && camera == "f01" ? 0.025 : 0.02);
     // Without a white image (issue 13): measured at most 0.048 px off (Illum) and 0.059 px (F01), worst at
     // half-integer disparities; the decode with the white image reads within 0.02.
     if (noise)
-      CheckStripDisparities(Decode(capture, decode::ColourMode::kLinear, false), what + ", no white image", 0.075);
+      CheckStripDisparities(Decode(capture, decode::ColourMode::kLinear, false), what + ", no white image", 0.075,
+                            0.075);
     CheckCameraColour(Decode(capture, decode::ColourMode::kCamera), truth, what);
     fs::remove_all(capture.folder);
   }
