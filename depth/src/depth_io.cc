@@ -41,6 +41,8 @@ nlohmann::json ToJson(const DepthOptions& options) {
   json["occlusion"] = {{"canny_low", options.occlusion.canny_low},
                        {"canny_high", options.occlusion.canny_high},
                        {"blur_sigma", options.occlusion.blur_sigma},
+                       {"along_window_sigma", options.occlusion.along_window_sigma},
+                       {"along_min_coherence", options.occlusion.along_min_coherence},
                        {"radius", options.occlusion.radius}};
   json["thin_structures"] = {{"reach", options.thin_structures.reach},
                              {"margin", options.thin_structures.margin},

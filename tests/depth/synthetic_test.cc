@@ -122,10 +122,11 @@ TEST(SimulatedScene, GapsBetweenCombTeethReadAsTheBackground) {
   DepthOptions halves_only;
   halves_only.cost.along_edge_penalty = 0.0f;
   const auto [along, with, without] = DefaultAgainstVariant(Render("comb", 9, 512), halves_only);  // laid out for 512
-  // Measured on 9x9x512x512: BadPix 0.07 3.0 %, MSE x100 7.3; with the halves only 10.5 % and 31.8.
-  EXPECT_LT(with.all.badpix_007, 4.5);
-  EXPECT_LT(with.all.mse_x100, 10.0);
-  EXPECT_LT(with.all.mse_x100, 0.5 * without.all.mse_x100);
+  // Measured on 9x9x512x512: BadPix 0.07 1.49 %, MSE x100 2.36 (3.0 % and 7.3 when the views along the teeth came
+  // from the smoothed gradient); with the halves only 10.5 % and 31.8.
+  EXPECT_LT(with.all.badpix_007, 2.0);
+  EXPECT_LT(with.all.mse_x100, 3.24);  // issue 19's anchor: SPO on HCI's stratified scene
+  EXPECT_LT(with.all.mse_x100, 0.2 * without.all.mse_x100);
 }
 
 // The layers scene's 2 px pickets and 3 px rails stand in front of a fine checker. The partial angular patches
@@ -135,7 +136,7 @@ TEST(SimulatedScene, ThinStructuresInFrontKeepTheirDepth) {
   DepthOptions unchecked;
   unchecked.thin_structures.reach = 0;
   const auto [checked, with, without] = DefaultAgainstVariant(Render("layers", 9, 512), unchecked);  // laid out for 512
-  // Measured on 9x9x512x512: BadPix 0.07 2.98 %, MSE x100 2.51; every patch admitted: 4.78 % and 6.74.
+  // Measured on 9x9x512x512: BadPix 0.07 2.89 %, MSE x100 2.56; every patch admitted: 5.19 % and 9.70.
   EXPECT_LT(with.all.badpix_007, 3.5);
   EXPECT_LT(with.all.mse_x100, 3.24);  // issue 19's anchor: SPO on HCI's stratified scene
   EXPECT_LT(with.all.mse_x100, 0.5 * without.all.mse_x100);
