@@ -40,9 +40,9 @@ double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float dispa
 
 namespace {
 
-// The structure tensor of the unsmoothed view: its forward differences' products summed over the channels and
-// averaged over a Gaussian window. Forward differences see a 1 px comb at full contrast, where the central
-// differences of a Sobel kernel see nothing and a 1 px blur leaves 0.7 % of its contrast.
+// The structure tensor of the view as given (not blurred like Canny's input): its forward differences' products
+// summed over the channels and averaged over a Gaussian window. Forward differences see a 1 px comb at full
+// contrast, where the central differences of a Sobel kernel see nothing and a 1 px blur leaves 0.7 % of it.
 class StructureTensor {
  public:
   StructureTensor(const cv::Mat& rgb, double window_sigma) {

@@ -26,11 +26,11 @@ struct OcclusionOptions {
   double canny_low = 20.0;  // Canny hysteresis thresholds (OpenCV, 3x3 Sobel, L2) on each 8-bit RGB channel
   double canny_high = 60.0;
   double blur_sigma = 1.0;  // Gaussian pre-smoothing of the centre view, pixels
-  // The views along an edge (OcclusionMap::along) follow the structure tensor of the unsmoothed centre view over a
-  // Gaussian window of this sigma, at the edge pixel, rather than the smoothed gradient the split uses. Inside a
-  // comb of 1 px teeth the 1 px blur leaves 0.7 % of the teeth's contrast and a Sobel kernel's central differences
-  // none, so the edges Canny finds there belong to the background seen through the gaps and point anywhere: the
-  // views along them were the wrong ones, and the gaps read as the teeth. Measured on the simulator's 9x9x512x512
+  // The views along an edge (OcclusionMap::along) follow the structure tensor of the centre view without blur_sigma's
+  // blur, over a Gaussian window of this sigma, at the edge pixel, rather than the smoothed gradient the split uses.
+  // Inside a comb of 1 px teeth the 1 px blur leaves 0.7 % of the teeth's contrast and a Sobel kernel's central
+  // differences none, so the edges Canny finds there belong to the background seen through the gaps and point anywhere:
+  // the views along them were the wrong ones, and the gaps read as the teeth. Measured on the simulator's 9x9x512x512
   // ideal light fields (BadPix 0.07 % / MSE x100), smoothed gradient -> window 3 with no gate below: comb 3.02 / 7.30
   // -> 1.51 / 2.35 (its 1 px gaps 32 % -> 2 % wrong), occluders 3.73 / 3.32 -> 3.44 / 3.04, layers 2.98 / 2.51 -> 2.89
   // / 2.61, HCI antinous 5.71 / 5.44 -> 5.70 / 5.41. Windows 1.5 to 5 all gave comb 1.5-1.6 / 2.3-2.6.
