@@ -9,8 +9,10 @@ namespace lfsp {
 
 namespace {
 
-// For Gaussian noise, median |N(0, 36 sigma^2)| = 0.6745 * 6 sigma (the mask below has sum of squares 36).
+// For Gaussian noise, median |N(0, 36 sigma^2)| = 0.6745 * 6 sigma (the mask below has sum of squares 36), and its
+// lower quartile 0.3186 * 6 sigma.
 constexpr double kMedianResponsePerSigma = 0.6745 * 6.0;
+constexpr double kLowerQuartileResponsePerSigma = 0.3186 * 6.0;
 
 // |response| of the grey image to the mask that cancels any plane (the difference of two Laplacians), without the
 // one-pixel border; empty if the image is smaller than 3x3.
@@ -29,10 +31,24 @@ cv::Mat PlaneFreeResponse(const cv::Mat& image) {
   return cv::abs(response(cv::Rect(1, 1, grey.cols - 2, grey.rows - 2)));
 }
 
-float Median(std::vector<float>& values) {
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
+// The value `fraction` of the way up the sorted values (0.5: the median); reorders them.
+float Quantile(std::vector<float>& values, double fraction) {
+  auto at = values.begin() + static_cast<std::ptrdiff_t>(static_cast<double>(values.size()) * fraction);
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
+float Median(std::vector<float>& values) { return Quantile(values, 0.5); }
+
+// The median's and the lower quartile's estimates of one channel, the smaller of the two.
+double LowerQuartileNoiseSigma(const cv::Mat& channel) {
+  const cv::Mat response = PlaneFreeResponse(channel);
+  if (response.empty()) return 0.0;
+  const cv::Mat inner = response.clone();
+  std::vector<float> values(inner.begin<float>(), inner.end<float>());
+  const double median = Median(values) / kMedianResponsePerSigma;
+  const double lower_quartile = Quantile(values, 0.25) / kLowerQuartileResponsePerSigma;
+  return std::min(median, lower_quartile);
 }
 
 }  // namespace
@@ -77,6 +93,14 @@ std::vector<double> EstimateNoiseSigmaPerChannel(const cv::Mat& image) {
 double EstimateChannelNoiseSigma(const cv::Mat& rgb) {
   const std::vector<double> sigmas = EstimateNoiseSigmaPerChannel(rgb);
   return *std::max_element(sigmas.begin(), sigmas.end());
+}
+
+double EstimateChannelNoiseSigmaLowerQuartile(const cv::Mat& rgb) {
+  std::vector<cv::Mat> channels;
+  cv::split(rgb, channels);
+  double largest = 0.0;
+  for (const cv::Mat& channel : channels) largest = std::max(largest, LowerQuartileNoiseSigma(channel));
+  return largest;
 }
 
 double SmoothingForNoise(double noise_sigma, double pixels_per_noise, double max_pixels) {

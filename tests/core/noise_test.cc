@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -60,6 +61,46 @@ TEST(NoiseFloor, ReadsNoiseUnderATextureThatCoversTheView) {
     EXPECT_NEAR(EstimateNoiseFloor(textured), level, 0.15 * level) << "sigma " << level;
     EXPECT_NEAR(EstimateNoiseFloor(textured), EstimateNoiseSigma(textured), 0.15 * level);
   }
+}
+
+// A sharp checker of 8.2 px squares at 20 degrees, anti-aliased by 4x4 supersampling, in two colours (the simulator's
+// layers background): noise-free, yet edges lie under more than half of its pixels.
+cv::Mat SharpChecker(int size) {
+  constexpr int kSamples = 4;
+  constexpr double kSquare = 8.2;
+  const double c = std::cos(20.0 * CV_PI / 180.0), s = std::sin(20.0 * CV_PI / 180.0);
+  cv::Mat checker(size, size, CV_32FC3);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      double light = 0.0;
+      for (int j = 0; j < kSamples; ++j)
+        for (int i = 0; i < kSamples; ++i) {
+          const double px = x + (i + 0.5) / kSamples, py = y + (j + 0.5) / kSamples;
+          const auto a = static_cast<long>(std::floor((c * px + s * py) / kSquare));
+          const auto b = static_cast<long>(std::floor((-s * px + c * py) / kSquare));
+          light += ((a + b) % 2 == 0) ? 1.0 : 0.0;
+        }
+      const double t = light / (kSamples * kSamples);
+      checker.at<cv::Vec3f>(y, x) = cv::Vec3f(0.35f, 0.40f, 0.45f) * static_cast<float>(1.0 - t) +
+                                    cv::Vec3f(0.90f, 0.90f, 0.85f) * static_cast<float>(t);
+    }
+  return checker;
+}
+
+// The lower quartile reads a fine sharp texture's edges as texture, where the median reads them as noise; on white
+// noise over a smooth texture both read the noise.
+TEST(NoiseLowerQuartile, ReadsAFineSharpTextureAsClean) {
+  const cv::Mat checker = SharpChecker(256);
+  EXPECT_GT(EstimateChannelNoiseSigma(checker), 0.01) << "the median reads the checker's edges as noise";
+  EXPECT_LT(EstimateChannelNoiseSigmaLowerQuartile(checker), 0.001);
+  for (double sigma : {0.005, 0.03}) {
+    const cv::Mat noisy = WithNoise(Texture(256, 9), sigma, 17);
+    EXPECT_NEAR(EstimateChannelNoiseSigmaLowerQuartile(noisy), sigma, 0.15 * sigma) << "sigma " << sigma;
+    EXPECT_NEAR(EstimateChannelNoiseSigmaLowerQuartile(noisy), EstimateChannelNoiseSigma(noisy), 0.1 * sigma);
+  }
+  // Over the checker, noise is read high (the texture adds to it), never low: noisy views never pass for clean.
+  const cv::Mat noisy_checker = WithNoise(checker, 0.03, 19);
+  EXPECT_GT(EstimateChannelNoiseSigmaLowerQuartile(noisy_checker), 0.85 * 0.03);
 }
 
 }  // namespace
