@@ -176,6 +176,7 @@ nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const
             {"source", from_truth ? "ground truth" : estimate.range_source}}},
           {"depth_choices",
            {{"noise_sigma", estimate.noise_sigma},
+            {"noise_sigma_lower_quartile", estimate.noise_sigma_lower_quartile},
             {"fine_band_snr", estimate.fine_band_snr},
             {"presmooth_sigma", estimate.presmooth_sigma},
             {"occlusion_radius", estimate.occlusion_radius},

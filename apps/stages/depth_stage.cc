@@ -27,6 +27,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["thin_structure_refusals"] = estimate.thin_structure_refusals;
   summary["occlusion_radius"] = estimate.occlusion_radius;
   summary["noise_sigma"] = estimate.noise_sigma;
+  summary["noise_sigma_lower_quartile"] = estimate.noise_sigma_lower_quartile;
   summary["fine_band_snr"] = estimate.fine_band_snr;
   summary["presmooth_sigma"] = estimate.presmooth_sigma;
   summary["sampler"] = depth::SamplerName(estimate.sampler);

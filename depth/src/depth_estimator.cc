@@ -68,13 +68,17 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     result.timings[step] = stopwatch.Lap();
     progress.Tick();
   };
-  // Noisy views (lenslet decodes, low light) are smoothed a little and resampled by the noise-matched kernel.
-  const std::vector<double> channel_noise =
-      EstimateNoiseSigmaPerChannel(light_field.View(light_field.shape().Centre()));
+  // Noisy views (lenslet decodes, low light) are smoothed a little and resampled by the noise-matched kernel. The
+  // smoothing follows the lower-quartile estimate, which a clean view's fine sharp texture does not raise; the
+  // sampler follows the median's, which it does, and such texture needs the noise-matched kernel too (presmooth.h).
+  const cv::Mat raw_centre = light_field.View(light_field.shape().Centre());
+  const std::vector<double> channel_noise = EstimateNoiseSigmaPerChannel(raw_centre);
   result.noise_sigma = *std::max_element(channel_noise.begin(), channel_noise.end());  // EstimateChannelNoiseSigma
-  result.fine_band_snr = FineBandSignalToNoise(light_field.View(light_field.shape().Centre()), options.cost);
-  result.presmooth_sigma = options.presmooth_sigma < 0.0f ? AutomaticPresmoothSigma(light_field, result.noise_sigma)
-                                                          : options.presmooth_sigma;
+  result.noise_sigma_lower_quartile = EstimateChannelNoiseSigmaLowerQuartile(raw_centre);
+  result.fine_band_snr = FineBandSignalToNoise(raw_centre, options.cost);
+  result.presmooth_sigma = options.presmooth_sigma < 0.0f
+                               ? AutomaticPresmoothSigma(light_field, result.noise_sigma_lower_quartile)
+                               : options.presmooth_sigma;
   std::optional<LightField> smoothed;
   if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
   const LightField& views = smoothed ? *smoothed : light_field;
@@ -100,9 +104,8 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     cost_options.sampler = AutomaticSampler(light_field, result.noise_sigma);
   result.sampler = cost_options.sampler;
   if (cost_options.detail_weight < 0.0f)
-    cost_options.detail_weight =
-        DetailWeightFor(light_field.View(light_field.shape().Centre()), centre, result.presmooth_sigma,
-                        DecodedFromSensor(light_field), result.fine_band_snr, cost_options);
+    cost_options.detail_weight = DetailWeightFor(raw_centre, centre, result.presmooth_sigma,
+                                                 DecodedFromSensor(light_field), result.fine_band_snr, cost_options);
   result.detail_weight = cost_options.detail_weight;
   if (cost_options.channel_weights[0] < 0.0f) cost_options.channel_weights = ChannelWeightsForNoise(channel_noise);
   result.channel_weights = cost_options.channel_weights;

@@ -136,8 +136,9 @@ TEST(SimulatedScene, ThinStructuresInFrontKeepTheirDepth) {
   DepthOptions unchecked;
   unchecked.thin_structures.reach = 0;
   const auto [checked, with, without] = DefaultAgainstVariant(Render("layers", 9, 512), unchecked);  // laid out for 512
-  // Measured on 9x9x512x512: BadPix 0.07 2.89 %, MSE x100 2.56; every patch admitted: 5.19 % and 9.70.
-  EXPECT_LT(with.all.badpix_007, 3.5);
+  // Measured on 9x9x512x512: BadPix 0.07 2.58 %, MSE x100 1.95; every patch admitted: 4.30 % and 6.14. (2.89 % and
+  // 2.56 when its fine checker was taken for noise and the views presmoothed, presmooth.h.)
+  EXPECT_LT(with.all.badpix_007, 3.0);
   EXPECT_LT(with.all.mse_x100, 3.24);  // issue 19's anchor: SPO on HCI's stratified scene
   EXPECT_LT(with.all.mse_x100, 0.5 * without.all.mse_x100);
   EXPECT_GT(checked.thin_structure_refusals, 0);

@@ -43,14 +43,15 @@ struct DepthResult {
   DisparityMap disparity;   // centre view, px per view step, HCI convention
   DisparityMap confidence;  // [0, 1]
   DisparityRange range;
-  std::string range_source;              // "options", "metadata" or "estimated from the views"
-  int occlusion_candidates = 0;          // pixels that used the edge-split angular patch
-  int thin_structure_refusals = 0;       // (pixel, partial patch) pairs refused on thin structures in front
-  double occlusion_radius = 0.0;         // the radius used (after the automatic choice)
-  double noise_sigma = 0.0;              // estimated noise of the centre view (Immerkaer), sample units
-  double fine_band_snr = 0.0;            // FineBandSignalToNoise of the unsmoothed centre view
-  double presmooth_sigma = 0.0;          // the smoothing used, pixels (after the automatic choice)
-  Sampler sampler = Sampler::kBilinear;  // the cost's resampling (after the automatic choice)
+  std::string range_source;                 // "options", "metadata" or "estimated from the views"
+  int occlusion_candidates = 0;             // pixels that used the edge-split angular patch
+  int thin_structure_refusals = 0;          // (pixel, partial patch) pairs refused on thin structures in front
+  double occlusion_radius = 0.0;            // the radius used (after the automatic choice)
+  double noise_sigma = 0.0;                 // estimated noise of the centre view (Immerkaer), sample units
+  double noise_sigma_lower_quartile = 0.0;  // the same from the lower quartile (what the presmoothing follows)
+  double fine_band_snr = 0.0;               // FineBandSignalToNoise of the unsmoothed centre view
+  double presmooth_sigma = 0.0;             // the smoothing used, pixels (after the automatic choice)
+  Sampler sampler = Sampler::kBilinear;     // the cost's resampling (after the automatic choice)
   int excluded_ring = 0;       // views this close to the centre left out of the cost (after the automatic choice)
   float detail_weight = 1.0f;  // weight of the cost's detail term (after the automatic choice)
   std::array<float, 3> channel_weights{1.0f, 1.0f, 1.0f};  // of |dR|, |dG|, |dB| (after the automatic choice)
