@@ -55,7 +55,8 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
                    "How views are resampled at sub-pixel shifts: bilinear (sharpest) | noise-matched (a cubic kernel "
                    "that keeps the same noise at every shift, so noise cannot pull disparities off whole-pixel "
                    "shifts; blurs by the cubic B-spline) | automatic: noise-matched on lenslet decodes and on views "
-                   "noisier than 0.003, bilinear on clean rendered light fields")
+                   "whose median noise estimate reads above 0.003 (noise, or a fine sharp texture, whose bilinear "
+                   "resampling is biased too), bilinear on the others")
       ->capture_default_str()
       ->check(CLI::IsMember({"automatic", "bilinear", "noise-matched"}));
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
@@ -82,7 +83,9 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
   command
       ->add_option("--presmooth", method.presmooth_sigma,
                    "Gaussian smoothing of every view before matching, pixels; -1 = automatic: 0.6 px on noisy views "
-                   "(a lenslet decode, or estimated noise above 0.003), none on clean ones; 0 = off")
+                   "(a lenslet decode, or estimated noise above 0.003 by the lower quartile of a plane-free "
+                   "filter's response, which a clean view's fine sharp texture does not raise), none on clean ones; "
+                   "0 = off")
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 10.0));
   command->add_option("--median-radius", method.median_radius, "Weighted-median refinement radius (0 = off)")
