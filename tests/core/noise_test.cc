@@ -4,9 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "lfsp/simulate/texture.h"
 
 namespace lfsp {
 namespace {
@@ -63,27 +64,25 @@ TEST(NoiseFloor, ReadsNoiseUnderATextureThatCoversTheView) {
   }
 }
 
-// A sharp checker of 8.2 px squares at 20 degrees, anti-aliased by 4x4 supersampling, in two colours (the simulator's
-// layers background): noise-free, yet edges lie under more than half of its pixels.
+// The simulator's checker texture as the layers scene's background has it (8.2 px squares at 20 degrees), each
+// pixel the average of 4 x 4 points: noise-free, yet edges lie under more than half of its pixels.
 cv::Mat SharpChecker(int size) {
   constexpr int kSamples = 4;
-  constexpr double kSquare = 8.2;
-  const double c = std::cos(20.0 * CV_PI / 180.0), s = std::sin(20.0 * CV_PI / 180.0);
-  cv::Mat checker(size, size, CV_32FC3);
+  simulate::Texture texture;
+  texture.kind = simulate::Texture::Kind::kChecker;
+  texture.colour_a = {0.90f, 0.90f, 0.85f};
+  texture.colour_b = {0.35f, 0.40f, 0.45f};
+  texture.period = 8.2f / static_cast<float>(size);  // normalised units
+  texture.angle = static_cast<float>(20.0 * CV_PI / 180.0);
+  cv::Mat checker(size, size, CV_32FC3, cv::Scalar::all(0.0));
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      double light = 0.0;
+    for (int x = 0; x < size; ++x)
       for (int j = 0; j < kSamples; ++j)
         for (int i = 0; i < kSamples; ++i) {
-          const double px = x + (i + 0.5) / kSamples, py = y + (j + 0.5) / kSamples;
-          const auto a = static_cast<long>(std::floor((c * px + s * py) / kSquare));
-          const auto b = static_cast<long>(std::floor((-s * px + c * py) / kSquare));
-          light += ((a + b) % 2 == 0) ? 1.0 : 0.0;
+          const simulate::Rgb rgb = texture.Evaluate((x + (i + 0.5f) / kSamples) / static_cast<float>(size),
+                                                     (y + (j + 0.5f) / kSamples) / static_cast<float>(size));
+          checker.at<cv::Vec3f>(y, x) += cv::Vec3f(rgb[0], rgb[1], rgb[2]) / (kSamples * kSamples);
         }
-      const double t = light / (kSamples * kSamples);
-      checker.at<cv::Vec3f>(y, x) = cv::Vec3f(0.35f, 0.40f, 0.45f) * static_cast<float>(1.0 - t) +
-                                    cv::Vec3f(0.90f, 0.90f, 0.85f) * static_cast<float>(t);
-    }
   return checker;
 }
 
