@@ -12,6 +12,7 @@
 #include "lfsp/core/stats.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/container_info.h"
+#include "lfsp/depth/depth_io.h"
 #include "lfsp/edit/refocus.h"
 #include "lfsp/edit/selection.h"
 #include "lfsp/segment/lfsp.h"
@@ -174,17 +175,7 @@ nlohmann::ordered_json DepthSummary(const stages::DepthStageResult& depth, const
            {{"min", estimate.range.min},
             {"max", estimate.range.max},
             {"source", from_truth ? "ground truth" : estimate.range_source}}},
-          {"depth_choices",
-           {{"noise_sigma", estimate.noise_sigma},
-            {"noise_sigma_lower_quartile", estimate.noise_sigma_lower_quartile},
-            {"fine_band_snr", estimate.fine_band_snr},
-            {"presmooth_sigma", estimate.presmooth_sigma},
-            {"occlusion_radius", estimate.occlusion_radius},
-            {"sampler", depth::SamplerName(estimate.sampler)},
-            {"excluded_ring", estimate.excluded_ring},
-            {"detail_weight", estimate.detail_weight},
-            {"channel_weights", estimate.channel_weights},
-            {"sgm_penalties", {{"p1", estimate.sgm.p1}, {"p2", estimate.sgm.p2}}}}}};
+          {"depth_choices", depth::AutomaticChoicesToJson(estimate)}};
 }
 
 // `--recolor`: the recolour stage on a copy of the light field (the report and the focal stack show the original),

@@ -25,16 +25,8 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["parameters"] = depth::ToJson(options);
   summary["occlusion_candidates"] = estimate.occlusion_candidates;
   summary["thin_structure_refusals"] = estimate.thin_structure_refusals;
-  summary["occlusion_radius"] = estimate.occlusion_radius;
-  summary["noise_sigma"] = estimate.noise_sigma;
-  summary["noise_sigma_lower_quartile"] = estimate.noise_sigma_lower_quartile;
-  summary["fine_band_snr"] = estimate.fine_band_snr;
-  summary["presmooth_sigma"] = estimate.presmooth_sigma;
-  summary["sampler"] = depth::SamplerName(estimate.sampler);
-  summary["excluded_ring"] = estimate.excluded_ring;
-  summary["detail_weight"] = estimate.detail_weight;
-  summary["channel_weights"] = estimate.channel_weights;
-  summary["sgm_penalties"] = {{"p1", estimate.sgm.p1}, {"p2", estimate.sgm.p2}};
+  const nlohmann::ordered_json choices = depth::AutomaticChoicesToJson(estimate);
+  for (const auto& [key, value] : choices.items()) summary[key] = value;
   const std::optional<DisparityMap>& truth = bundle.disparity;
   if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
     const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(estimate.disparity, *truth);

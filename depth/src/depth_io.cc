@@ -62,4 +62,13 @@ nlohmann::json ToJson(const DepthOptions& options) {
   return json;
 }
 
+nlohmann::ordered_json AutomaticChoicesToJson(const DepthResult& result) {
+  return {
+      {"noise_sigma", result.noise_sigma},           {"noise_sigma_lower_quartile", result.noise_sigma_lower_quartile},
+      {"fine_band_snr", result.fine_band_snr},       {"presmooth_sigma", result.presmooth_sigma},
+      {"occlusion_radius", result.occlusion_radius}, {"sampler", SamplerName(result.sampler)},
+      {"excluded_ring", result.excluded_ring},       {"detail_weight", result.detail_weight},
+      {"channel_weights", result.channel_weights},   {"sgm_penalties", {{"p1", result.sgm.p1}, {"p2", result.sgm.p2}}}};
+}
+
 }  // namespace lfsp::depth

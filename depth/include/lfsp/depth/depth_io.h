@@ -23,4 +23,9 @@ void WriteDepthOutputs(const DepthResult& result, const DepthOutputPaths& paths)
 // The options as JSON, for summaries (every parameter, so a run can be repeated).
 nlohmann::json ToJson(const DepthOptions& options);
 
+// What the estimate chose automatically, as JSON for summaries (in this order): the noise estimates and the choices
+// that follow them (presmoothing, sampler, excluded ring, detail and channel weights), the occlusion radius and the
+// semi-global penalties.
+nlohmann::ordered_json AutomaticChoicesToJson(const DepthResult& result);
+
 }  // namespace lfsp::depth
