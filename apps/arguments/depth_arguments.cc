@@ -88,9 +88,23 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
                    "0 = off")
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 10.0));
-  command->add_option("--median-radius", method.median_radius, "Weighted-median refinement radius (0 = off)")
+  command
+      ->add_option("--median-radius", method.median.radius,
+                   "Weighted-median refinement radius (0 = off, the wide window too)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--wide-median-radius", method.median.wide_radius,
+                   "Radius of the wide weighted median, which corrects gross errors such as a thin occluder's "
+                   "disparity spread over a flat region beside it (occluders: BadPix 0.07 3.50 -> 2.23 %); 0 = off")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--wide-median-threshold", method.median.wide_threshold,
+                   "The wide median replaces the fine one only where they differ by more than this, px per view "
+                   "step (lower corrects more, but biases slanted surfaces)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 }
 
 depth::DepthOptions ToDepthOptions(const DepthArguments& arguments) {

@@ -146,7 +146,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     lap("plane_fit");
   }
   if (options.regularise) {
-    WeightedMedianRefine(estimate.disparity, centre, options.median_radius, options.median_sigma);
+    WeightedMedianRefine(estimate.disparity, centre, options.median);
     lap("weighted_median");
   }
   result.disparity = std::move(estimate.disparity);

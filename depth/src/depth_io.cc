@@ -55,7 +55,10 @@ nlohmann::json ToJson(const DepthOptions& options) {
                        {"inlier_distance", options.plane.inlier_distance},
                        {"min_inlier_fraction", options.plane.min_inlier_fraction},
                        {"min_support", options.plane.min_support}};
-  json["median"] = {{"radius", options.median_radius}, {"sigma", options.median_sigma}};
+  json["median"] = {{"radius", options.median.radius},
+                    {"sigma", options.median.sigma},
+                    {"wide_radius", options.median.wide_radius},
+                    {"wide_threshold", options.median.wide_threshold}};
   json["presmooth_sigma"] = options.presmooth_sigma;
   json["excluded_ring"] = options.cost.excluded_ring;
   json["detail_weight"] = options.cost.detail_weight;

@@ -11,6 +11,65 @@
 
 namespace lfsp::depth {
 
+namespace {
+
+// The wide window is read every second pixel (a quarter of the samples; the median of a patch of one colour hardly
+// changes), and samples whose colour weight is below this are left out of it (they cannot move its median, and
+// sorting them is most of the cost).
+constexpr int kWideStride = 2;
+constexpr float kNegligibleWeight = 1e-3f;
+
+// The weighted samples of `source` over the window of `radius` around (x, y), every `stride` pixels, each weighted
+// by exp(-|colour difference to (x, y)|^2 * inverse); samples lighter than `lightest` are left out (the centre, of
+// weight 1, never is). Returns their total weight.
+float WindowSamples(const DisparityMap& source, const cv::Mat& guide_rgb, int x, int y, int radius, int stride,
+                    float inverse, float lightest, std::vector<std::pair<float, float>>& samples) {
+  const cv::Vec3f centre = guide_rgb.at<cv::Vec3f>(y, x);
+  samples.clear();
+  float total = 0.0f;
+  // Start on the grid through (x, y), so the centre is always a sample.
+  const int first_row = y - (std::min(radius, y) / stride) * stride;
+  const int first_column = x - (std::min(radius, x) / stride) * stride;
+  const int last_row = std::min(source.height() - 1, y + radius);
+  const int last_column = std::min(source.width() - 1, x + radius);
+  for (int yy = first_row; yy <= last_row; yy += stride) {
+    const cv::Vec3f* row = guide_rgb.ptr<cv::Vec3f>(yy);
+    for (int xx = first_column; xx <= last_column; xx += stride) {
+      const cv::Vec3f difference = row[xx] - centre;
+      const float weight = std::exp(-difference.dot(difference) * inverse);
+      if (weight < lightest) continue;
+      samples.emplace_back(source.at(yy, xx), weight);
+      total += weight;
+    }
+  }
+  return total;
+}
+
+// The weighted median of the samples (sorted in place): the first value at which the cumulative weight reaches
+// half the total.
+float MedianOf(std::vector<std::pair<float, float>>& samples, float total) {
+  std::sort(samples.begin(), samples.end());
+  float cumulative = 0.0f;
+  for (const auto& [value, weight] : samples) {
+    cumulative += weight;
+    if (cumulative >= 0.5f * total) return value;
+  }
+  return samples.back().first;  // rounding: the cumulative sum fell just short of half its own total
+}
+
+// Whether the samples' weighted median lies more than `threshold` from `value`: more than half their weight on one
+// side beyond it. Settles most pixels without the sort.
+bool MedianIsFar(const std::vector<std::pair<float, float>>& samples, float total, float value, float threshold) {
+  float below = 0.0f, above = 0.0f;
+  for (const auto& [sample, weight] : samples) {
+    if (sample < value - threshold) below += weight;
+    if (sample > value + threshold) above += weight;
+  }
+  return below >= 0.5f * total || above > 0.5f * total;
+}
+
+}  // namespace
+
 DisparityEstimate SelectDisparity(const CostVolume& cost, const std::vector<float>& disparities) {
   const int labels = cost.labels();
   if (static_cast<int>(disparities.size()) != labels) throw Error("depth: label count differs from the cost volume");
@@ -38,15 +97,16 @@ DisparityEstimate SelectDisparity(const CostVolume& cost, const std::vector<floa
   return estimate;
 }
 
-void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, int radius, float sigma) {
-  if (radius <= 0) return;
+void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, const MedianOptions& options) {
+  if (options.radius <= 0) return;
   if (guide_rgb.type() != CV_32FC3 || guide_rgb.rows != disparity.height() || guide_rgb.cols != disparity.width()) {
     throw Error("weighted median: the guide must be a float RGB image of the disparity map's size");
   }
   // Our own implementation: OpenCV's ximgproc::weightedMedianFilter was measured to give different results on
   // repeated calls in one process, and results must be reproducible.
   const DisparityMap source = disparity;
-  const float inverse = 1.0f / (2.0f * sigma * sigma);
+  const float inverse = 1.0f / (2.0f * options.sigma * options.sigma);
+  const bool wide = options.wide_radius > options.radius;
   const int width = disparity.width();
   const int height = disparity.height();
 #pragma omp parallel
@@ -55,27 +115,17 @@ void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, int
 #pragma omp for schedule(static)
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
-        const cv::Vec3f centre = guide_rgb.at<cv::Vec3f>(y, x);
-        samples.clear();
-        float total = 0.0f;
-        for (int yy = std::max(0, y - radius); yy <= std::min(height - 1, y + radius); ++yy) {
-          const cv::Vec3f* row = guide_rgb.ptr<cv::Vec3f>(yy);
-          for (int xx = std::max(0, x - radius); xx <= std::min(width - 1, x + radius); ++xx) {
-            const cv::Vec3f difference = row[xx] - centre;
-            const float weight = std::exp(-difference.dot(difference) * inverse);
-            samples.emplace_back(source.at(yy, xx), weight);
-            total += weight;
+        float total = WindowSamples(source, guide_rgb, x, y, options.radius, 1, inverse, 0.0f, samples);
+        float value = MedianOf(samples, total);
+        if (wide) {
+          total = WindowSamples(source, guide_rgb, x, y, options.wide_radius, kWideStride, inverse, kNegligibleWeight,
+                                samples);
+          if (MedianIsFar(samples, total, value, options.wide_threshold)) {
+            const float far = MedianOf(samples, total);
+            if (std::abs(far - value) > options.wide_threshold) value = far;
           }
         }
-        std::sort(samples.begin(), samples.end());
-        float cumulative = 0.0f;
-        for (const auto& [value, weight] : samples) {
-          cumulative += weight;
-          if (cumulative >= 0.5f * total) {
-            disparity.at(y, x) = value;
-            break;
-          }
-        }
+        disparity.at(y, x) = value;
       }
     }
   }

@@ -35,8 +35,7 @@ struct DepthOptions {
   // Gaussian smoothing of every view before matching, pixels: < 0 = automatic (AutomaticPresmoothSigma: 0.6 px on
   // noisy views, none on clean ones), 0 = off.
   float presmooth_sigma = -1.0f;
-  int median_radius = 3;       // weighted-median refinement window radius (0 = off)
-  float median_sigma = 0.05f;  // colour scale of the weighted median's weights
+  MedianOptions median;  // the weighted-median refinement (refinement.h)
 };
 
 struct DepthResult {
