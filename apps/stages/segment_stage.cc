@@ -87,6 +87,8 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
                                 {"initial", lfsp.timings.initial_seconds},
                                 {"projection", lfsp.timings.projection_seconds},
                                 {"refine", lfsp.timings.refine_seconds},
+                                {"refine_sweeps", lfsp.sweep_seconds},
+                                {"refine_planes", lfsp.timings.plane_seconds},
                                 {"carry", lfsp.timings.carry_seconds},
                                 {"segmentation", lfsp.timings.total_seconds},
                                 {"stage", stopwatch.Seconds()}};
