@@ -46,15 +46,15 @@ float WindowSamples(const DisparityMap& source, const cv::Mat& guide_rgb, int x,
 }
 
 // The weighted median of the samples (sorted in place): the first value at which the cumulative weight reaches
-// half the total.
-float MedianOf(std::vector<std::pair<float, float>>& samples, float total) {
+// half the total; `fallback` if none does (only a guide with non-finite colours makes the weights NaN).
+float MedianOf(std::vector<std::pair<float, float>>& samples, float total, float fallback) {
   std::sort(samples.begin(), samples.end());
   float cumulative = 0.0f;
   for (const auto& [value, weight] : samples) {
     cumulative += weight;
     if (cumulative >= 0.5f * total) return value;
   }
-  return samples.back().first;  // rounding: the cumulative sum fell just short of half its own total
+  return fallback;
 }
 
 // Whether the samples' weighted median lies more than `threshold` from `value`: more than half their weight on one
@@ -116,12 +116,12 @@ void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, con
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         float total = WindowSamples(source, guide_rgb, x, y, options.radius, 1, inverse, 0.0f, samples);
-        float value = MedianOf(samples, total);
+        float value = MedianOf(samples, total, source.at(y, x));
         if (wide) {
           total = WindowSamples(source, guide_rgb, x, y, options.wide_radius, kWideStride, inverse, kNegligibleWeight,
                                 samples);
           if (MedianIsFar(samples, total, value, options.wide_threshold)) {
-            const float far = MedianOf(samples, total);
+            const float far = MedianOf(samples, total, value);
             if (std::abs(far - value) > options.wide_threshold) value = far;
           }
         }
