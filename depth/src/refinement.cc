@@ -14,19 +14,20 @@ namespace lfsp::depth {
 namespace {
 
 // The wide window is read every second pixel (a quarter of the samples; the median of a patch of one colour hardly
-// changes), and samples whose colour weight is below this are left out of it (they cannot move its median, and
+// changes), and samples whose colour weight is below this are left out of it (they hardly move its median, and
 // sorting them is most of the cost).
 constexpr int kWideStride = 2;
 constexpr float kNegligibleWeight = 1e-3f;
 
 // The weighted samples of `source` over the window of `radius` around (x, y), every `stride` pixels, each weighted
-// by exp(-|colour difference to (x, y)|^2 * inverse); samples lighter than `lightest` are left out (the centre, of
-// weight 1, never is). Returns their total weight.
+// by exp(-|colour difference to (x, y)|^2 * inverse). Samples lighter than `lightest` are left out (the centre has
+// weight 1), and so are non-finite disparities (a NaN would break the sort's ordering). Returns their total weight.
 float WindowSamples(const DisparityMap& source, const cv::Mat& guide_rgb, int x, int y, int radius, int stride,
                     float inverse, float lightest, std::vector<std::pair<float, float>>& samples) {
   const cv::Vec3f centre = guide_rgb.at<cv::Vec3f>(y, x);
   samples.clear();
   float total = 0.0f;
+  radius = std::min(radius, std::max(source.width(), source.height()));  // y + radius cannot overflow
   // Start on the grid through (x, y), so the centre is always a sample.
   const int first_row = y - (std::min(radius, y) / stride) * stride;
   const int first_column = x - (std::min(radius, x) / stride) * stride;
@@ -37,8 +38,9 @@ float WindowSamples(const DisparityMap& source, const cv::Mat& guide_rgb, int x,
     for (int xx = first_column; xx <= last_column; xx += stride) {
       const cv::Vec3f difference = row[xx] - centre;
       const float weight = std::exp(-difference.dot(difference) * inverse);
-      if (weight < lightest) continue;
-      samples.emplace_back(source.at(yy, xx), weight);
+      const float value = source.at(yy, xx);
+      if (weight < lightest || !std::isfinite(value)) continue;
+      samples.emplace_back(value, weight);
       total += weight;
     }
   }
@@ -46,7 +48,7 @@ float WindowSamples(const DisparityMap& source, const cv::Mat& guide_rgb, int x,
 }
 
 // The weighted median of the samples (sorted in place): the first value at which the cumulative weight reaches
-// half the total; `fallback` if none does (only a guide with non-finite colours makes the weights NaN).
+// half the total; `fallback` if none does (only NaN weights: a guide with non-finite colours, or sigma 0).
 float MedianOf(std::vector<std::pair<float, float>>& samples, float total, float fallback) {
   std::sort(samples.begin(), samples.end());
   float cumulative = 0.0f;

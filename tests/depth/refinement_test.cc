@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -81,18 +82,35 @@ TEST(WeightedMedian, TheWideWindowTakesBackAFlatRegionAThinBarSpreadOver) {
   for (int y = 70; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) EXPECT_FLOAT_EQ(both.at(y, x), fine_only.at(y, x)) << "at " << x << ", " << y;
   }
-  // Taken everywhere (threshold 0), the wide window biases the slanted plane: why it is held to gross errors.
+  // Taken everywhere (a threshold of 1e-6 px), the wide window biases the slanted plane: why it is held to gross
+  // errors.
   DisparityMap everywhere = disparity;
   MedianOptions wide_everywhere;
   wide_everywhere.wide_threshold = 1e-6f;
   WeightedMedianRefine(everywhere, guide, wide_everywhere);
   double worst = 0.0;
   for (int y = 70; y < kSize - 12; ++y) {
-    for (int x = 12; x < kSize - 12; ++x)
+    for (int x = 12; x < kSize - 12; ++x) {
       worst = std::max(worst, std::abs(double{everywhere.at(y, x)} - slanted(x, y)));
+    }
   }
   RecordProperty("wide_everywhere_worst_px", std::to_string(worst));
   EXPECT_GT(worst, 0.07);
+}
+
+// Non-finite disparities (a hostile input's NaN views can make them) are left out of both windows, so the
+// median neither breaks its sort nor spreads them: a NaN block in a plane takes the plane's value.
+TEST(WeightedMedian, LeavesNonFiniteDisparitiesOut) {
+  DisparityMap disparity(32, 32, 0.5f);
+  for (int y = 10; y < 13; ++y) {
+    for (int x = 10; x < 13; ++x) disparity.at(y, x) = std::numeric_limits<float>::quiet_NaN();
+  }
+  disparity.at(20, 20) = std::numeric_limits<float>::infinity();
+  const cv::Mat guide(32, 32, CV_32FC3, cv::Scalar(0.4, 0.4, 0.4));
+  WeightedMedianRefine(disparity, guide, MedianOptions{});
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) EXPECT_FLOAT_EQ(disparity.at(y, x), 0.5f) << "at " << x << ", " << y;
+  }
 }
 
 TEST(PlaneFit, UnsupportedPixelsTakeTheirSuperpixelsPlane) {

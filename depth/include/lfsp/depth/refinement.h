@@ -27,12 +27,12 @@ struct MedianOptions {
   // disparity spread over a flat region beside it by the semi-global pass. Its median replaces the fine one only
   // where the two differ by more than `wide_threshold` px, because over a slanted surface it is biased by the slope
   // times the radius (antinous: BadPix 0.07 5.70 -> 8.57 % if taken everywhere at radius 10).
-  int wide_radius = 10;         // 0 (or at most `radius`) = off
+  int wide_radius = 10;         // at most `radius` (e.g. 0) = off
   float wide_threshold = 0.5f;  // px per view step
 };
 
-// Weighted median of the disparity in a (2 radius + 1)^2 window, and where it differs from the fine median by more
-// than the threshold, the wide window's.
+// The fine window's weighted median of the disparity, or the wide window's where the two differ by more than
+// `wide_threshold`.
 void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, const MedianOptions& options);
 
 }  // namespace lfsp::depth
