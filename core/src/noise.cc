@@ -40,12 +40,17 @@ float Quantile(std::vector<float>& values, double fraction) {
 
 float Median(std::vector<float>& values) { return Quantile(values, 0.5); }
 
+// The values of PlaneFreeResponse, for their quantiles; empty if the image is smaller than 3x3.
+std::vector<float> ResponseValues(const cv::Mat& image) {
+  const cv::Mat response = PlaneFreeResponse(image);
+  if (response.empty()) return {};
+  return std::vector<float>(response.begin<float>(), response.end<float>());
+}
+
 // The median's and the lower quartile's estimates of one channel, the smaller of the two.
 double LowerQuartileNoiseSigma(const cv::Mat& channel) {
-  const cv::Mat response = PlaneFreeResponse(channel);
-  if (response.empty()) return 0.0;
-  const cv::Mat inner = response.clone();
-  std::vector<float> values(inner.begin<float>(), inner.end<float>());
+  std::vector<float> values = ResponseValues(channel);
+  if (values.empty()) return 0.0;
   const double median = Median(values) / kMedianResponsePerSigma;
   const double lower_quartile = Quantile(values, 0.25) / kLowerQuartileResponsePerSigma;
   return std::min(median, lower_quartile);
@@ -54,12 +59,10 @@ double LowerQuartileNoiseSigma(const cv::Mat& channel) {
 }  // namespace
 
 double EstimateNoiseSigma(const cv::Mat& image) {
-  const cv::Mat response = PlaneFreeResponse(image);
-  if (response.empty()) return 0.0;
+  std::vector<float> values = ResponseValues(image);
+  if (values.empty()) return 0.0;
   // The median of |response| rather than Immerkaer's mean: texture and edges give a minority of large responses,
   // which the mean counts as noise.
-  const cv::Mat inner = response.clone();
-  std::vector<float> values(inner.begin<float>(), inner.end<float>());
   return static_cast<double>(Median(values)) / kMedianResponsePerSigma;
 }
 
