@@ -33,7 +33,8 @@ struct RefineReport {
 // each candidate's own disparity), never splitting a slice within its view nor emptying a label's centre slice;
 // then re-types the superpixel boundaries and re-fits the planes on the new centre view.
 // Views are processed in four phases by angular parity (u mod 2, v mod 2): a view's 80-clique reaches only views of
-// the other phases, so the views of one phase run in parallel without sharing any label they write.
+// the other phases, so the views of one phase run in parallel without sharing any label they write (a band of rows
+// at a time, for the cache).
 RefineReport RefineLabels(const RefineInputs& inputs, const LfspParams& params, Labels& labels,
                           std::vector<Plane>& planes);
 
