@@ -41,13 +41,18 @@ cv::Mat LightField::WeightView(ViewIndex view) {
   return WrapView(weights_.shape(), CV_32F, 1, weights_.ViewData(view));
 }
 
-Labels::Labels(LightFieldShape shape, std::int32_t fill)
-    : Array4D<std::int32_t>(
-          [&] {
-            shape.channels = 1;
-            return shape;
-          }(),
-          fill) {}
+namespace {
+
+LightFieldShape OneChannel(LightFieldShape shape) {
+  shape.channels = 1;
+  return shape;
+}
+
+}  // namespace
+
+Labels::Labels(LightFieldShape shape, std::int32_t fill) : Array4D<std::int32_t>(OneChannel(shape), fill) {}
+
+Labels::Labels(LightFieldShape shape, Unfilled) : Array4D<std::int32_t>(OneChannel(shape), Unfilled{}) {}
 
 cv::Mat Labels::View(ViewIndex view) { return WrapView(shape_, CV_32S, 1, ViewData(view)); }
 cv::Mat Labels::View(ViewIndex view) const { return WrapView(shape_, CV_32S, 1, ViewData(view)); }

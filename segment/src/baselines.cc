@@ -73,7 +73,7 @@ Labels PerView(const LightField& light_field, SegmentView segment_view) {
 
 Labels SlicPerView(const LightField& light_field, const BaselineParams& params) {
   RequireSuperpixelSizeFits(params.size, light_field.shape(), "per-view SLIC");
-  std::vector<float> lab = LabOfLightField(light_field);
+  LabRays lab = LabOfLightField(light_field);
   return PerView(light_field, [&](ViewIndex view) {
     cv::Ptr<cv::ximgproc::SuperpixelSLIC> slic = cv::ximgproc::createSuperpixelSLIC(
         LabView(lab, light_field.shape(), view), cv::ximgproc::SLIC, params.size, params.slic_ruler);

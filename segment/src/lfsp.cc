@@ -91,7 +91,7 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   Stopwatch step;
   LfspResult result;
 
-  std::vector<float> lab = LabOfLightField(light_field);
+  LabRays lab = LabOfLightField(light_field);
   result.noise_sigma = EstimateNoiseSigma(light_field.View(shape.Centre()));
   result.presmooth = params.presmooth < 0.0 ? PresmoothForNoise(result.noise_sigma) : params.presmooth;
   if (result.presmooth > 0.0) SmoothLabViews(lab, shape, result.presmooth);
@@ -105,7 +105,7 @@ LfspResult SegmentLightField(const LightField& light_field, const DisparityMap& 
   result.planes = FitPlanes(centre_labels, result.superpixels, centre_disparity, params.inlier_threshold);
   result.timings.initial_seconds = step.Lap();
 
-  result.labels = Labels(shape);
+  result.labels = Labels(shape, Labels::Unfilled{});  // ProjectSuperpixels writes every ray
   ProjectSuperpixels(centre_labels, result.planes, result.labels);
   result.timings.projection_seconds = step.Lap();
 

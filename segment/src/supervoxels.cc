@@ -40,7 +40,7 @@ Labels SlicSupervoxels(const LightField& light_field, ViewOrder order, const Bas
     frame_view[static_cast<std::size_t>(f)] =
         order == ViewOrder::kRowFirst ? ViewIndex{f % shape.nu, f / shape.nu} : ViewIndex{f / shape.nv, f % shape.nv};
   }
-  std::vector<float> lab = LabOfLightField(light_field);
+  LabRays lab = LabOfLightField(light_field);
   auto lab_at = [&](int f, int y, int x) {
     const ViewIndex v = frame_view[static_cast<std::size_t>(f)];
     return lab.data() +

@@ -9,6 +9,7 @@
 #include "lfsp/core/conventions.h"
 #include "lfsp/core/metadata.h"
 #include "lfsp/core/srgb.h"  // the transfer curve; users of Transfer reach SrgbToLinear through this header
+#include "lfsp/core/uninitialized_vector.h"
 
 namespace lfsp {
 
@@ -42,8 +43,12 @@ std::string ToString(const LightFieldShape& shape);  // "9x9 views of 512x512x3"
 template <typename T>
 class Array4D {
  public:
+  // For arrays the caller writes in full right away (in parallel, say): no fill pass over them first.
+  struct Unfilled {};
+
   Array4D() = default;
   explicit Array4D(const LightFieldShape& shape, T fill = T{}) : shape_(shape), data_(shape.TotalSamples(), fill) {}
+  Array4D(const LightFieldShape& shape, Unfilled) : shape_(shape), data_(shape.TotalSamples()) {}
 
   const LightFieldShape& shape() const { return shape_; }
   bool empty() const { return data_.empty(); }
@@ -72,7 +77,7 @@ class Array4D {
 
  protected:
   LightFieldShape shape_;
-  std::vector<T> data_;
+  UninitializedVector<T> data_;
 };
 
 // Float samples in [0, 1], RGB order, with optional per-ray weights (vignetting / confidence, one channel).
@@ -110,6 +115,7 @@ class Labels : public Array4D<std::int32_t> {
   Labels() = default;
   // `shape.channels` is ignored: labels always have one channel.
   explicit Labels(LightFieldShape shape, std::int32_t fill = kUnlabelled);
+  Labels(LightFieldShape shape, Unfilled);
   cv::Mat View(ViewIndex view);
   cv::Mat View(ViewIndex view) const;
 };
