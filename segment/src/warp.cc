@@ -6,6 +6,8 @@
 #include <limits>
 #include <utility>
 
+#include "rounding.h"
+
 namespace lfsp::segment {
 
 void ForwardWarp(const std::int32_t* centre_labels, const float* centre_disparity, int width, int height, int du,
@@ -19,9 +21,11 @@ void ForwardWarp(const std::int32_t* centre_labels, const float* centre_disparit
           static_cast<std::size_t>(y0) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x0);
       const float d = centre_disparity[source];
       if (centre_labels[source] < 0 || !std::isfinite(d)) continue;
-      const float fx = std::floor(static_cast<float>(x0) - static_cast<float>(du) * d + 0.5f);
-      const float fy = std::floor(static_cast<float>(y0) - static_cast<float>(dv) * d + 0.5f);
-      // Compared as floats first: a hostile disparity (1e30) lands beyond what an int holds.
+      // The target is the nearest pixel, floor(position + 0.5). Compared as floats first: a hostile disparity (1e30)
+      // lands beyond what an int holds. floor(v) >= 0 exactly when v >= 0, and floor(v) < width when v < width, and
+      // inside those bounds truncation is the floor: no floor call (without SSE4.1 it was half this loop's time).
+      const float fx = static_cast<float>(x0) - static_cast<float>(du) * d + 0.5f;
+      const float fy = static_cast<float>(y0) - static_cast<float>(dv) * d + 0.5f;
       if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(width) && fy < static_cast<float>(height))) continue;
       const int x = static_cast<int>(fx), y = static_cast<int>(fy);
       const std::size_t target =
@@ -89,8 +93,8 @@ void FillHoles(std::int32_t* view_labels, float* view_depth, int width, int heig
         int best = -1;
         for (int direction : {1, -1}) {
           for (int k = 1; k <= max_steps; ++k) {
-            const int nx = static_cast<int>(std::lround(x + direction * k * sx));
-            const int ny = static_cast<int>(std::lround(y + direction * k * sy));
+            const int nx = RoundHalfAway(x + direction * k * sx);
+            const int ny = RoundHalfAway(y + direction * k * sy);
             if (nx < 0 || ny < 0 || nx >= width || ny >= height) break;
             const int j = ny * width + nx;
             if (view_labels[j] < 0) continue;
