@@ -5,17 +5,6 @@
 
 namespace lfsp {
 
-void PlaneSums::Add(double x, double y) {
-  const cv::Vec3d p(x, y, 1.0);
-  m += p * p.t();
-  n += 1.0;
-}
-
-void PlaneSums::Add(double x, double y, double d) {
-  Add(x, y);
-  r += cv::Vec3d(x, y, 1.0) * d;
-}
-
 void PlaneSums::Add(double x, double y, double d, double weight) {
   const cv::Vec3d p(x, y, 1.0);
   m += (p * weight) * p.t();
