@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
+
 #include <opencv2/core.hpp>
 
 #include "lfsp/core/conventions.h"
@@ -68,6 +71,22 @@ TEST(LightField, WeightsAndLabelsShareTheLayoutWithOneChannel) {
   EXPECT_EQ(labels.at({0, 0}, 0, 0), Labels::kUnlabelled);
   labels.View({1, 1}).at<int>(3, 4) = 12;
   EXPECT_EQ(labels.at({1, 1}, 3, 4), 12);
+}
+
+TEST(LightField, ArraysHoldTheirFillAndUnfilledOnesOnlySkipIt) {
+  // Array4D keeps its samples in an UninitializedVector: sizing with a fill must still fill (a light field starts
+  // black, labels unlabelled), and an Unfilled array has the same shape and size for a caller to write in full.
+  const LightFieldShape shape{3, 3, 8, 6, 3};
+  const LightField light_field(shape);
+  EXPECT_TRUE(
+      std::all_of(light_field.data(), light_field.data() + light_field.size(), [](float v) { return v == 0.0f; }));
+  const Labels filled(shape, 7);
+  EXPECT_TRUE(std::all_of(filled.data(), filled.data() + filled.size(), [](std::int32_t v) { return v == 7; }));
+  Labels unfilled(shape, Labels::Unfilled{});
+  EXPECT_EQ(unfilled.shape(), filled.shape());
+  EXPECT_EQ(unfilled.size(), filled.size());
+  unfilled.View({2, 2}).at<int>(7, 5) = 3;
+  EXPECT_EQ(unfilled.at({2, 2}, 7, 5), 3);
 }
 
 TEST(DisparityMap, MatSharesMemory) {

@@ -137,6 +137,29 @@ TEST(ForwardWarp, PixelsLandingOutsideTheViewAreDropped) {
   EXPECT_EQ(view.Label(3, 2), 3);
 }
 
+TEST(ForwardWarp, AtTheLeftAndTopBordersLessThanHalfAPixelOutsideRoundsIn) {
+  // du = 2 from column 0: d = 0.2 shifts to -0.4 (rounds to 0), d = 0.25 to exactly -0.5 (to 0, ties go towards +x),
+  // d = 0.3 to -0.6 (-1, dropped). The same along rows with dv = 2. Around 0 the nearest pixel is where truncating
+  // towards zero and the floor differ, so this pins the bounds test that lets ForwardWarp truncate.
+  Centre centre(4, 3);
+  centre.Set(0, 0, 0, 0.2f);
+  centre.Set(0, 1, 1, 0.25f);
+  centre.Set(0, 2, 2, 0.3f);
+  const View view = Warp(centre, 2, 0);
+  EXPECT_EQ(view.Label(0, 0), 0);
+  EXPECT_EQ(view.Label(0, 1), 1);
+  EXPECT_EQ(view.Labelled(), 2);
+
+  Centre column(3, 4);
+  column.Set(0, 0, 0, 0.2f);
+  column.Set(1, 0, 1, 0.25f);
+  column.Set(2, 0, 2, 0.3f);
+  const View down = Warp(column, 0, 2);
+  EXPECT_EQ(down.Label(0, 0), 0);
+  EXPECT_EQ(down.Label(1, 0), 1);
+  EXPECT_EQ(down.Labelled(), 2);
+}
+
 TEST(ForwardWarp, UnlabelledAndNonFiniteSamplesAreSkipped) {
   Centre centre(6, 4);
   centre.Set(1, 1, -1, 0.0f);
