@@ -35,9 +35,11 @@ LabRays LabOfLightField(const LightField& light_field) {
   if (shape.channels != 3 && shape.channels != 1) {
     throw Error("segmentation needs an RGB or grey light field, got " + std::to_string(shape.channels) + " channels");
   }
-  // Not zero-filled: the loop below writes every sample, each thread its own contiguous run of views (a serial fill
-  // first was 90 ms of LFSP's 1.9 s on antinous; interleaving the views between threads, as a dynamic schedule does,
-  // made the refinement that reads them slower on this machine, 1.5 -> 2.2 s).
+  // Not zero-filled: the loop below writes every sample, each thread its own contiguous run of views. On antinous
+  // the allocation with its serial zero fill took 90 ms, and the whole step went 0.216 -> 0.170 s without it (the
+  // page faults remain, now in parallel). The schedule is static on purpose: a dynamic one, interleaving the views
+  // between the threads, made the refinement that later reads them slower on this machine on every 2-thread run
+  // (1.5 -> 2.2 s; with one thread no change). The cause was not found (BENCHMARKS.md, twenty-sixth session).
   LabRays lab(shape.Views() * shape.ViewPixels() * 3);
   // 8-bit sRGB -> 8-bit Lab goes through OpenCV's lookup tables, an order of magnitude faster than the float path;
   // the quantisation (L steps of 0.4, a/b steps of 1) is far below the colour differences segmentation weighs.

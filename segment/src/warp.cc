@@ -22,8 +22,9 @@ void ForwardWarp(const std::int32_t* centre_labels, const float* centre_disparit
       const float d = centre_disparity[source];
       if (centre_labels[source] < 0 || !std::isfinite(d)) continue;
       // The target is the nearest pixel, floor(position + 0.5). Compared as floats first: a hostile disparity (1e30)
-      // lands beyond what an int holds. floor(v) >= 0 exactly when v >= 0, and floor(v) < width when v < width, and
-      // inside those bounds truncation is the floor: no floor call (without SSE4.1 it was half this loop's time).
+      // lands beyond what an int holds. floor(v) >= 0 exactly when v >= 0, and floor(v) < width exactly when
+      // v < width (width being whole); inside those bounds truncation is the floor. So no floor call, which without
+      // SSE4.1 was half this loop's time.
       const float fx = static_cast<float>(x0) - static_cast<float>(du) * d + 0.5f;
       const float fy = static_cast<float>(y0) - static_cast<float>(dv) * d + 0.5f;
       if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(width) && fy < static_cast<float>(height))) continue;

@@ -13,8 +13,10 @@ struct PlaneSums {
   double n = 0.0;
 
   // A point without a disparity: only its geometry, for terms that compare planes over a point set.
-  // Inline and written out (m += p p^T with p = (x, y, 1) gives these very sums): LFSP's plane smoothing adds
-  // every centre pixel ten times an iteration, and the matrix expression's temporaries were most of that time.
+  // Inline and written out: m += p p^T and r += p d with p = (x, y, 1), bit for bit the sums of the matrix
+  // expression this replaced as long as the compiler does not fuse a multiply and an add (baseline x86-64 has no
+  // FMA; with -march=native it may, and the last bits move). LFSP's plane smoothing adds every centre pixel ten
+  // times an iteration, and the matrix expression's temporaries were most of that time.
   void Add(double x, double y) {
     m(0, 0) += x * x;
     m(0, 1) += x * y;
