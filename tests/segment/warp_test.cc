@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "lfsp/core/conventions.h"
@@ -141,23 +142,17 @@ TEST(ForwardWarp, AtTheLeftAndTopBordersLessThanHalfAPixelOutsideRoundsIn) {
   // du = 2 from column 0: d = 0.2 shifts to -0.4 (rounds to 0), d = 0.25 to exactly -0.5 (to 0, ties go towards +x),
   // d = 0.3 to -0.6 (-1, dropped). The same along rows with dv = 2. Around 0 the nearest pixel is where truncating
   // towards zero and the floor differ, so this pins the bounds test that lets ForwardWarp truncate.
-  Centre centre(4, 3);
-  centre.Set(0, 0, 0, 0.2f);
-  centre.Set(0, 1, 1, 0.25f);
-  centre.Set(0, 2, 2, 0.3f);
-  const View view = Warp(centre, 2, 0);
-  EXPECT_EQ(view.Label(0, 0), 0);
-  EXPECT_EQ(view.Label(0, 1), 1);
-  EXPECT_EQ(view.Labelled(), 2);
-
-  Centre column(3, 4);
-  column.Set(0, 0, 0, 0.2f);
-  column.Set(1, 0, 1, 0.25f);
-  column.Set(2, 0, 2, 0.3f);
-  const View down = Warp(column, 0, 2);
-  EXPECT_EQ(down.Label(0, 0), 0);
-  EXPECT_EQ(down.Label(1, 0), 1);
-  EXPECT_EQ(down.Labelled(), 2);
+  for (const bool along_rows : {false, true}) {
+    // Pixel i of the line on the border sits at (0, i) for du = 2, at (i, 0) for dv = 2.
+    Centre centre(along_rows ? 3 : 4, along_rows ? 4 : 3);
+    const auto at = [&](int i) { return along_rows ? std::pair{i, 0} : std::pair{0, i}; };
+    const float disparities[] = {0.2f, 0.25f, 0.3f};
+    for (int i = 0; i < 3; ++i) centre.Set(at(i).first, at(i).second, i, disparities[i]);
+    const View view = Warp(centre, along_rows ? 0 : 2, along_rows ? 2 : 0);
+    EXPECT_EQ(view.Label(at(0).first, at(0).second), 0) << (along_rows ? "dv" : "du");
+    EXPECT_EQ(view.Label(at(1).first, at(1).second), 1) << (along_rows ? "dv" : "du");
+    EXPECT_EQ(view.Labelled(), 2) << (along_rows ? "dv" : "du");
+  }
 }
 
 TEST(ForwardWarp, UnlabelledAndNonFiniteSamplesAreSkipped) {
