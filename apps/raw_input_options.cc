@@ -12,11 +12,18 @@ void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments) {
                       "Plain raw images: Bayer pattern of the top-left 2x2 tile, rggb | grbg | gbrg | bggr "
                       "(default: the camera's; F01 bggr, Illum grbg)");
   command->add_option("--black", arguments.black,
-                      "Plain raw images: black level in file codes (default: 0, or the camera's for a 16-bit sensor "
-                      "dump)");
+                      "Plain raw images: black level in file codes (default with --camera: the camera's, scaled to "
+                      "the file's range unless a 16-bit file fits under the camera's white level (a sensor dump): "
+                      "F01 10.46 of 255; without --camera: 0)");
   command->add_option("--white", arguments.white,
                       "Plain raw images: white (saturation) level in file codes (default: 255 / 65535, or the "
                       "camera's for a 16-bit sensor dump)");
+  command
+      ->add_option("--jpeg-restore", arguments.jpeg_restore,
+                   "Greyscale JPEG mosaics: iterations restoring the Bayer colour that JPEG quantization took, from "
+                   "the file's DCT coefficients (colour bands otherwise); 0 = the plain JPEG decode")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
 }
 
 decode::PlainRawOptions ToPlainRawOptions(const PlainRawArguments& arguments) {
@@ -29,6 +36,7 @@ decode::PlainRawOptions ToPlainRawOptions(const PlainRawArguments& arguments) {
   if (!arguments.bayer.empty()) options.bayer = decode::BayerPatternFromString(arguments.bayer);
   if (arguments.black >= 0.0) options.black = arguments.black;
   if (arguments.white >= 0.0) options.white = arguments.white;
+  options.jpeg_restore_iterations = arguments.jpeg_restore;
   return options;
 }
 

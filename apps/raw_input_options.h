@@ -14,6 +14,7 @@ struct PlainRawArguments {
   std::string bayer;
   double black = -1.0;
   double white = -1.0;
+  int jpeg_restore = decode::PlainRawOptions{}.jpeg_restore_iterations;
 };
 
 void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments);

@@ -18,6 +18,10 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
   command->add_option("--colour", arguments.colour,
                       "camera (white balance, colour matrix, exposure bias, sRGB) | linear (devignetted scene-linear "
                       "RGB) (default: camera)");
+  command->add_option("--white-balance", arguments.white_balance,
+                      "With --colour camera: auto (the capture's own near-grey pixels, starting from the camera's "
+                      "gains) | camera (the file's gains) | none | R,G,B gains (default: camera for Lytro files, "
+                      "auto for plain raw images, whose nominal gains belong to another scene's light)");
   command->add_flag("--no-hot-pixels", arguments.no_hot_pixels, "Skip hot-pixel correction (default: corrected)");
   command->add_option("--dehex", arguments.dehex,
                       "Row-alternation softening against hexagonal artefacts, 0..0.25 (default: 0.1)");
@@ -44,6 +48,8 @@ decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& argum
   options.plain = ToPlainRawOptions(arguments.plain);
   options.decode.demosaic = decode::DemosaicMethodFromString(arguments.demosaic);
   options.decode.colour = decode::ColourModeFromString(arguments.colour);
+  if (!arguments.white_balance.empty())
+    options.decode.white_balance = decode::WhiteBalanceFromString(arguments.white_balance);
   options.decode.correct_hot_pixels = !arguments.no_hot_pixels;
   if (!(arguments.dehex >= 0.0 && arguments.dehex <= 0.25)) throw Error(OptionName("dehex") + " must be in [0, 0.25]");
   options.decode.dehex = arguments.dehex;
@@ -55,6 +61,8 @@ nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
   return {{"grid", arguments.grid.empty() ? nlohmann::json(nullptr) : nlohmann::json(arguments.grid)},
           {"demosaic", arguments.demosaic},
           {"colour", arguments.colour},
+          {"white_balance",
+           arguments.white_balance.empty() ? nlohmann::json(nullptr) : nlohmann::json(arguments.white_balance)},
           {"hot_pixels", !arguments.no_hot_pixels},
           {"dehex", arguments.dehex},
           {"lattice_flattening", !arguments.no_lattice_flattening}};

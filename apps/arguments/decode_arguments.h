@@ -17,6 +17,7 @@ struct DecodeArguments {
   std::string grid;
   std::string demosaic = "gradient";
   std::string colour = "camera";
+  std::string white_balance;  // "" = the default: camera for Lytro files, auto for plain raw images
   bool no_hot_pixels = false;
   double dehex = 0.1;
   bool no_lattice_flattening = false;

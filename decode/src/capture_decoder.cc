@@ -137,7 +137,12 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
 
   CaptureDecodeResult result;
   DecodeReport report;
-  result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, options.decode, &report);
+  DecodeOptions decode_options = options.decode;
+  // A plain raw image's nominal gains belong to another scene's light: its own grey surfaces decide.
+  if (!decode_options.white_balance)
+    decode_options.white_balance =
+        WhiteBalance{IsPlainRawImagePath(capture_path) ? WhiteBalanceMode::kAuto : WhiteBalanceMode::kCamera};
+  result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, decode_options, &report);
   progress.Tick();
   progress.Finish();
   result.light_field.metadata["decode"]["white_choice"] = white->summary["why"];
@@ -147,6 +152,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   result.summary = {{"capture", capture_path.string()},
                     {"input_format", input.format},
                     {"levels", input.levels},
+                    {"jpeg_restoration", input.jpeg_restoration},
                     {"camera", {{"model", metadata.camera_model}, {"serial", metadata.serial}}},
                     {"white_image", white->summary},
                     {"grid", estimate.grid.ToJson()},

@@ -13,6 +13,8 @@
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lattice_pattern.h"
+#include "lfsp/decode/view_quality.h"
+#include "lfsp/decode/white_balance.h"
 
 namespace lfsp::decode {
 namespace {
@@ -22,6 +24,11 @@ void CheckSize(const RawImage& image, int width, int height, const std::string& 
     throw Error(what + ": raw image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " with " +
                 std::to_string(image.pixels.size()) + " pixels; the lenslet grid expects " + std::to_string(width) +
                 "x" + std::to_string(height));
+}
+
+// The metadata's colour matrix (row-major, applied to white-balanced sensor RGB), or the identity without one.
+std::array<double, 9> CcmOf(const LytroMetadata& metadata) {
+  return metadata.colour.ccm.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
 }
 
 // Per-phase factors applied to the white image before dividing by it. Linear: none, so the sensor's colour response
@@ -56,16 +63,12 @@ std::array<float, 4> WhiteGains(ColourMode mode, const RawImage& white, const Ly
 
 // The colour transform of a mode as one 3x3 matrix applied to devignetted sensor RGB.
 //   camera: exposure bias * CCM * diag(white balance): the white image kept the sensor's raw colour, so the
-//           capture's white balance applies, then the colour matrix.
+//           white balance applies, then the colour matrix.
 //   linear: CCM alone: dividing by the white image has already balanced the channels (to the calibration light),
 //           so only the colour matrix takes sensor primaries to scene-linear (sRGB-primary) RGB.
-std::array<float, 9> ColourMatrix(const LytroMetadata& metadata, ColourMode mode) {
-  std::array<double, 3> balance = {1.0, 1.0, 1.0};
-  if (const auto& gain = metadata.colour.white_balance_gain;
-      mode == ColourMode::kCamera && gain && gain->gr > 0 && gain->gb > 0)
-    balance = {gain->r / (0.5 * (gain->gr + gain->gb)), 1.0, gain->b / (0.5 * (gain->gr + gain->gb))};
-  std::array<double, 9> ccm = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  if (metadata.colour.ccm) ccm = *metadata.colour.ccm;
+std::array<float, 9> ColourMatrix(const LytroMetadata& metadata, ColourMode mode,
+                                  const std::array<double, 3>& balance) {
+  const std::array<double, 9> ccm = CcmOf(metadata);
   // LFToolbox v0.6: the F01's bias is stated one stop lower than it is applied (bias + 1); the Illum's as is.
   const double stops = metadata.modulation_exposure_bias.value_or(0.0) + (metadata.camera_model == "F01" ? 1.0 : 0.0);
   const double bias = mode == ColourMode::kCamera ? std::exp2(stops) : 1.0;
@@ -75,6 +78,37 @@ std::array<float, 9> ColourMatrix(const LytroMetadata& metadata, ColourMode mode
       matrix[static_cast<std::size_t>(3 * row + col)] = static_cast<float>(
           bias * ccm[static_cast<std::size_t>(3 * row + col)] * balance[static_cast<std::size_t>(col)]);
   return matrix;
+}
+
+// The white-balance gains (R, G, B) the colour matrix applies, and their description for the report. Linear
+// decodes have none: the white image balanced the channels.
+std::array<double, 3> ResolveWhiteBalance(const DecodeOptions& options, const LytroMetadata& metadata,
+                                          const cv::Mat& rgb, const cv::Mat& grey_white, nlohmann::json& report) {
+  if (options.colour == ColourMode::kLinear) {
+    report = {{"mode", "none (linear colour: the white image balances the channels)"}, {"gains", {1.0, 1.0, 1.0}}};
+    return {1.0, 1.0, 1.0};
+  }
+  const WhiteBalance balance = options.white_balance.value_or(WhiteBalance{});
+  std::array<double, 3> gains = {1.0, 1.0, 1.0};
+  report = {{"mode", ToString(balance)}};
+  switch (balance.mode) {
+    case WhiteBalanceMode::kCamera:
+      gains = CameraWhiteBalanceGains(metadata);
+      break;
+    case WhiteBalanceMode::kNone:
+      break;
+    case WhiteBalanceMode::kGains:
+      gains = balance.gains;
+      break;
+    case WhiteBalanceMode::kAuto: {
+      AutoWhiteBalanceReport automatic;
+      gains = EstimateWhiteBalance(rgb, grey_white, CcmOf(metadata), CameraWhiteBalanceGains(metadata), &automatic);
+      report["auto"] = automatic.ToJson();
+      break;
+    }
+  }
+  report["gains"] = gains;
+  return gains;
 }
 
 }  // namespace
@@ -114,9 +148,11 @@ nlohmann::json LatticeGainJson(const std::optional<LatticeGainReport>& report) {
 nlohmann::json DecodeReport::ToJson() const {
   return {{"demosaic", demosaic},
           {"colour", colour},
+          {"white_balance", white_balance},
           {"hot_pixels_corrected", hot_pixels_corrected},
           {"output_scale", output_scale},
           {"row_alternation", row_alternation},
+          {"centre_bands", {{"chroma", centre_bands[0]}, {"luma", centre_bands[1]}}},
           {"lattice_gain", LatticeGainJson(lattice_gain)},
           {"seconds", seconds},
           {"cpu_seconds", cpu_seconds}};
@@ -206,7 +242,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
   //    never clipped: the whole light field is darkened instead).
   RayColour colour;
-  colour.matrix = ColourMatrix(capture_metadata, options.colour);
+  const std::array<double, 3> balance =
+      ResolveWhiteBalance(options, capture_metadata, rgb, white.grey, out_report.white_balance);
+  colour.matrix = ColourMatrix(capture_metadata, options.colour, balance);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
   out_report.output_scale = colour.scale;
@@ -225,11 +263,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   light_field.transfer = options.colour == ColourMode::kCamera ? Transfer::kSrgb : Transfer::kLinear;
   lap("soften_encode");
   out_report.row_alternation = RowAlternationRatio(light_field);
+  const ViewIndex centre = light_field.shape().Centre();
+  out_report.centre_bands = {ChromaBandRatio(light_field, centre), LumaBandRatio(light_field, centre)};
 
   light_field.metadata["decode"] = {{"source", capture_metadata.source},
                                     {"white_image", white.source},
                                     {"demosaic", out_report.demosaic},
                                     {"colour", out_report.colour},
+                                    {"white_balance", out_report.white_balance},
                                     {"output_scale", out_report.output_scale},
                                     {"hot_pixels_corrected", out_report.hot_pixels_corrected},
                                     {"view_step_pixels", geometry.view_step},

@@ -3,6 +3,7 @@
 
 #include "lfsp/decode/raw_input.h"
 
+#include <spdlog/fmt/fmt.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
+#include "lfsp/decode/jpeg_mosaic.h"
 #include "lfsp/decode/lytro_capture.h"
 
 namespace lfsp::decode {
@@ -24,6 +26,34 @@ std::string Lower(std::string text) {
 BayerValues Uniform(double value) { return {value, value, value, value}; }
 
 std::string Extension(const std::filesystem::path& path) { return Lower(path.extension().string()); }
+
+bool IsJpegPath(const std::filesystem::path& path) {
+  const std::string extension = Extension(path);
+  return extension == ".jpg" || extension == ".jpeg";
+}
+
+struct PlainLevels {
+  double black = 0.0;  // file codes
+  double white = 0.0;
+  std::string why;
+};
+
+// The levels of a plain raw image when none are given.
+//   16-bit, camera given, every code under the camera's white level: a sensor dump, read with the camera's levels.
+//   Camera given otherwise: the file is the camera's raw scaled to the file's range (an 8-bit export, or a 16-bit
+//     one scaled up), so the camera's black level scales with it (F01: 168 of 4095 is 10.5 of 255). Leaving it at 0
+//     keeps a pedestal that the white balance then tints (blue on an F01: its blue gain is the largest).
+//   No camera: the file's full code range.
+PlainLevels DefaultPlainLevels(int bit_depth, std::uint16_t largest_stored, bool has_camera, const RawFormat& camera) {
+  const double full_scale = bit_depth == 8 ? 255.0 : 65535.0;
+  if (!has_camera) return {0.0, full_scale, "the file's full code range"};
+  if (bit_depth == 16 && largest_stored <= camera.white.gr)
+    return {
+        camera.black.gr, camera.white.gr,
+        "the camera's levels (codes fit its " + std::to_string(static_cast<int>(camera.white.gr)) + " white level)"};
+  return {camera.black.gr / camera.white.gr * full_scale, full_scale,
+          "the camera's black level scaled to the file's full code range"};
+}
 
 }  // namespace
 
@@ -135,27 +165,43 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
   RawFormat& format = *input.metadata.raw_format;
   if (options.bayer) format.mosaic = *options.bayer;
 
-  // Integer codes back from the [0, 1] floats.
+  // A greyscale JPEG's mosaic is restored from its coefficients (jpeg_mosaic.h): the plain decode has lost the
+  // colour the quantization took. Its codes are fractional, so they are kept at 1/256 of an 8-bit code.
   const double full_scale = image.bit_depth == 8 ? 255.0 : 65535.0;
+  double code_scale = 1.0;  // stored raw code per file code
+  cv::Mat codes;            // file codes, CV_32FC1
+  if (IsJpegPath(path) && image.bit_depth == 8 && options.jpeg_restore_iterations > 0) {
+    if (const std::optional<JpegCoefficients> coefficients = ReadJpegCoefficients(path)) {
+      MosaicRestoreOptions restore;
+      restore.iterations = options.jpeg_restore_iterations;
+      MosaicRestoreReport report;
+      codes = RestoreJpegMosaic(*coefficients, restore, &report);
+      code_scale = 256.0;
+      input.jpeg_restoration = {{"iterations", report.iterations},
+                                {"mean_change_codes", report.mean_change},
+                                {"last_correction", report.last_correction}};
+    }
+  }
+  if (codes.empty()) image.pixels.convertTo(codes, CV_32FC1, full_scale);
+  image.pixels.release();
+
   input.raw.width = width;
   input.raw.height = height;
   input.raw.pixels.resize(input.raw.PixelCount());
   std::uint16_t largest = 0;
   for (int y = 0; y < height; ++y) {
-    const float* row = image.pixels.ptr<float>(y);
+    const float* row = codes.ptr<float>(y);
     std::uint16_t* out = input.raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
     for (int x = 0; x < width; ++x) {
-      out[x] = static_cast<std::uint16_t>(std::lround(std::clamp(static_cast<double>(row[x]), 0.0, 1.0) * full_scale));
+      out[x] = static_cast<std::uint16_t>(
+          std::lround(std::clamp(static_cast<double>(row[x]), 0.0, full_scale) * code_scale));
       largest = std::max(largest, out[x]);
     }
   }
-  image.pixels.release();
 
-  const bool sensor_dump = image.bit_depth == 16 && input.has_camera_metadata && largest <= format.white.gr;
-  double black = sensor_dump ? format.black.gr : 0.0, white = sensor_dump ? format.white.gr : full_scale;
-  input.levels = sensor_dump
-                     ? "the camera's levels (codes fit its " + std::to_string(static_cast<int>(white)) + " white level)"
-                     : "the file's full code range";
+  const PlainLevels levels = DefaultPlainLevels(image.bit_depth, largest, input.has_camera_metadata, format);
+  input.levels = levels.why;
+  double black = levels.black, white = levels.white;
   if (options.black || options.white) input.levels = "given levels";
   black = options.black.value_or(black);
   white = options.white.value_or(white);
@@ -163,10 +209,9 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
     throw Error(name + ": levels black " + std::to_string(black) + " / white " + std::to_string(white) +
                 " out of range for a " + std::to_string(image.bit_depth) +
                 "-bit image (need 0 <= black < white <= " + std::to_string(static_cast<int>(full_scale)) + ")");
-  format.black = Uniform(black);
-  format.white = Uniform(white);
-  input.levels +=
-      ": black " + std::to_string(static_cast<int>(black)) + ", white " + std::to_string(static_cast<int>(white));
+  format.black = Uniform(black * code_scale);
+  format.white = Uniform(white * code_scale);
+  input.levels += fmt::format(": black {:g}, white {:g}", black, white);
   return input;
 }
 

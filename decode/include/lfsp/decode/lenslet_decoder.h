@@ -10,6 +10,7 @@
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/lytro_metadata.h"
 #include "lfsp/decode/raw_packing.h"
+#include "lfsp/decode/white_balance.h"
 
 namespace lfsp::decode {
 
@@ -26,6 +27,9 @@ ColourMode ColourModeFromString(const std::string& name);
 struct DecodeOptions {
   DemosaicMethod demosaic = DemosaicMethod::kGradient;
   ColourMode colour = ColourMode::kCamera;
+  // White balance of kCamera decodes (white_balance.h). None given: the camera's gains from the metadata (what
+  // DecodeCaptureFile also chooses for Lytro files; plain raw images get kAuto there).
+  std::optional<WhiteBalance> white_balance;
   bool correct_hot_pixels = true;
   // A pixel brighter than all 8 same-colour neighbours by this much (fraction of white - black) is hot.
   double hot_pixel_margin = 0.2;
@@ -56,9 +60,12 @@ DecodedGeometry DecodedGeometryFor(const LensletGrid& grid);
 struct DecodeReport {
   std::string demosaic;
   std::string colour;
+  nlohmann::json white_balance;  // mode, gains (R, G, B) and, for auto, what the estimate saw
   long hot_pixels_corrected = 0;
   double output_scale = 1.0;     // the factor that brought the brightest decoded sample to <= 1 (no clipping)
   double row_alternation = 0.0;  // RowAlternationRatio of the result (~1 clean, > 2 striped)
+  // ChromaBandRatio and LumaBandRatio of the centre view (view_bands.h: clean decodes read 1.8-2.9)
+  std::array<double, 2> centre_bands = {0.0, 0.0};
   std::optional<LatticeGainReport> lattice_gain;  // what FlattenLatticeGain found; none when it did not run
   std::map<std::string, double> seconds;          // wall time per step
   std::map<std::string, double> cpu_seconds;      // CPU time per step, all threads

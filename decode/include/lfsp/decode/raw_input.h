@@ -2,6 +2,7 @@
 
 #include <array>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -16,6 +17,8 @@ struct PlainRawOptions {
   std::optional<BayerPattern> bayer;  // overrides the camera's pattern
   std::optional<double> black;        // overrides the black level (raw code)
   std::optional<double> white;        // overrides the white (saturation) level (raw code)
+  // Greyscale JPEG mosaics: iterations of RestoreJpegMosaic (jpeg_mosaic.h); 0 = the plain JPEG decode.
+  int jpeg_restore_iterations = 30;
 };
 
 // What a decoder (and the simulator) needs to know about each Lytro camera, as the real files state it (F01:
@@ -53,16 +56,19 @@ struct RawInput {
   bool white_image = false;          // a Lytro modulation (white) image
   bool has_camera_metadata = false;  // false: a plain image without --camera (no optics, no colour)
   std::string levels;                // where the black and white levels came from, for the one-line report
+  nlohmann::json jpeg_restoration;   // what RestoreJpegMosaic did (null: not a greyscale JPEG, or not asked)
 };
 
 // True for the extensions of plain raw images: .png .tif .tiff .jpg .jpeg (any case).
 bool IsPlainRawImagePath(const std::filesystem::path& path);
 
 // A single-channel 8- or 16-bit PNG, TIFF or JPEG holding a Bayer mosaic (or a grey image: RGB files with three
-// equal channels count as one). Levels: --black/--white when given;
-// otherwise 16-bit files whose largest code fits under the camera's white level keep the camera's levels (a sensor
-// dump), and every other file spans its full code range (0..255 or 0..65535). lfsp::Error naming the file for
-// colour or float images and for levels out of range.
+// equal channels count as one). A greyscale JPEG's mosaic is restored from its DCT coefficients (RestoreJpegMosaic),
+// unless options.jpeg_restore_iterations is 0. Levels: --black/--white when given; otherwise, with a camera, 16-bit
+// files whose largest code fits under the camera's white level keep the camera's levels (a sensor dump) and other
+// files are taken as the camera's raw scaled to the file's full range (the black level scales with it); without a
+// camera, the file's full code range (0..255 or 0..65535). lfsp::Error naming the file for colour or float images and
+// for levels out of range.
 RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOptions& options);
 
 // Any raw input: a Lytro capture or white image (LFP/LFR container, .RAW + metadata pair), or a plain raw image.

@@ -1,0 +1,69 @@
+#pragma once
+
+// Bayer mosaics stored as greyscale JPEG, as some exports of lenslet raws are (the real F01 frames of Tao et al.,
+// ICCV 2013, are 8-bit quality-75 JPEGs of the mosaic).
+//
+// Why they need more than an ordinary JPEG decode: a Bayer mosaic carries its colour at the highest spatial
+// frequencies (G against R and B is a checkerboard, R against B alternates along rows and columns), which is exactly
+// what JPEG quantizes hardest. Where the colour is faint, as in a dark frame, most blocks keep only the (7,7)
+// coefficient of the checkerboard, or nothing: the decoded colour then swells and fades with the position inside
+// each 8x8 block (the basis function's |cos| envelope, 0.2 at the block edge to 1.0 at its centre), and vanishes in
+// whole blocks. Micro-lens rows 8.6 px apart sample those 8-px cycles at a slowly drifting phase, so every view
+// shows colour bands about 14 rows apart. RestoreJpegMosaic undoes what it can from the coefficients themselves.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace lfsp::decode {
+
+// The quantized DCT coefficients of a single-component JPEG, as stored in the file.
+struct JpegCoefficients {
+  int width = 0;  // image size in pixels
+  int height = 0;
+  int blocks_x = 0;  // 8x8 blocks per row and rows of blocks (the last ones may reach past the image)
+  int blocks_y = 0;
+  std::array<float, 64> quant{};      // quantization step of each coefficient, natural (row-major) order
+  std::vector<std::int16_t> indices;  // blocks_y x blocks_x blocks of 64 quantized values, natural order
+  const std::int16_t* Block(int bx, int by) const {
+    return indices.data() +
+           (static_cast<std::size_t>(by) * static_cast<std::size_t>(blocks_x) + static_cast<std::size_t>(bx)) * 64;
+  }
+};
+
+// The coefficients of a greyscale (one-component, 8-bit) JPEG, or nothing when the file is a colour or 12-bit JPEG.
+// lfsp::Error naming the file when it is not a readable JPEG or declares more blocks than its size can hold
+// (CheckDeclaredAllocation).
+std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path& path);
+
+struct MosaicRestoreOptions {
+  // Alternations between the two constraints below. 0 = the plain JPEG decode.
+  int iterations = 30;
+  // The colour of the mosaic (each Bayer carrier demodulated to base band) is taken to vary smoothly: what lies
+  // between these two Gaussian scales (pixels) around each carrier is taken out at every iteration. The narrow one
+  // holds the JPEG block pattern (8-px cycles and their harmonics); the wide one keeps the scene's colour.
+  double narrow_sigma = 1.0;
+  double wide_sigma = 32.0;
+};
+
+struct MosaicRestoreReport {
+  int iterations = 0;
+  double mean_change = 0.0;      // mean |restored - plain decode|, codes
+  double last_correction = 0.0;  // mean distance the last iteration's coefficients moved back into their bins
+};
+
+// The mosaic that the coefficients most plausibly came from, in 8-bit codes (CV_32FC1, 0..255, width x height):
+// alternating projections (POCS) between "every DCT coefficient lies inside the quantization bin the file
+// records" (which holds for the true mosaic) and "the colour carried by the Bayer carriers is smooth". Blocks whose
+// colour was quantized away take it from their neighbours, and the block envelope is flattened, within what the
+// recorded coefficients allow. Luminance detail away from the carriers is left to the data. Deterministic; uses the
+// OpenMP threads.
+cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRestoreOptions& options = {},
+                          MosaicRestoreReport* report = nullptr);
+
+}  // namespace lfsp::decode

@@ -1,0 +1,51 @@
+#pragma once
+
+// White balance of `--colour camera` decodes: the camera's own gains (Lytro files carry them), none, gains given by
+// the user, or an automatic estimate from the capture's own near-grey pixels (for plain raw images, whose gains are
+// not known: the nominal camera's gains belong to another scene's light).
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "lfsp/decode/lytro_metadata.h"
+
+namespace lfsp::decode {
+
+enum class WhiteBalanceMode { kCamera, kAuto, kNone, kGains };
+
+struct WhiteBalance {
+  WhiteBalanceMode mode = WhiteBalanceMode::kCamera;
+  std::array<double, 3> gains = {1.0, 1.0, 1.0};  // R, G, B; kGains only
+};
+
+// "camera", "auto", "none" or three positive gains "R,G,B" (scaled so that G is 1); lfsp::Error naming the option
+// otherwise.
+WhiteBalance WhiteBalanceFromString(const std::string& text);
+std::string ToString(const WhiteBalance& balance);
+
+// The metadata's white-balance gains relative to green (image.color.whiteBalanceGain), or 1, 1, 1 without them.
+std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata);
+
+struct AutoWhiteBalanceReport {
+  std::array<double, 3> start = {1.0, 1.0, 1.0};  // gains the search began from (the camera's)
+  std::array<double, 3> gains = {1.0, 1.0, 1.0};  // what it settled on
+  double grey_fraction = 0.0;                     // share of the well-lit pixels taken as grey in the last round
+  int rounds = 0;
+  bool kept_start = false;  // too few grey pixels: the start gains were kept
+  nlohmann::json ToJson() const;
+};
+
+// Gains (R, G, B with G = 1) that make the capture's near-grey surfaces grey, in the manner of Huo et al., "Robust
+// automatic white balance algorithm using gray color points in images" (IEEE Trans. Consumer Electronics, 2006):
+// starting from `start`, the well-lit, unclipped pixels whose colour after the gains and `ccm` is close to neutral
+// are averaged in sensor RGB, the gains are set to make that average grey, and the selection is repeated until the
+// gains settle. Coloured scenes (foliage) keep their colour: only pixels already near grey vote. `rgb` is the
+// devignetted, demosaicked sensor image (CV_32FC3, R G B), `grey_white` its white image (CV_32FC1, 1 at the
+// micro-image peak): only pixels with white >= 0.5 are used.
+std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& grey_white,
+                                           const std::array<double, 9>& ccm, const std::array<double, 3>& start,
+                                           AutoWhiteBalanceReport* report = nullptr);
+
+}  // namespace lfsp::decode

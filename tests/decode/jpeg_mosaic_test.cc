@@ -1,0 +1,148 @@
+// Greyscale JPEG mosaics (issue 49): the coefficients are read as stored, and the restoration brings back the Bayer
+// colour that quantization took from a faint, lenslet-like mosaic, without the block pattern.
+
+#include "lfsp/decode/jpeg_mosaic.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfsp/core/image_io.h"
+#include "test_support.h"
+
+namespace lfsp::decode {
+namespace {
+
+using lfsp::testing::ErrorOf;
+using lfsp::testing::TempDir;
+
+constexpr int kSize = 512;
+constexpr double kLensRow = 8.6;  // an F01's lens rows; lens columns 9.93 px
+constexpr double kLensColumn = 9.93;
+
+// The true mosaic, in 8-bit codes: a dark lenslet image (micro-images brightest at their centres over a black level
+// of 10.5, as the real F01 frames are) of a green surface whose colour changes slowly across the frame. BGGR: green
+// sits 3 codes (at a micro-image centre) above red and blue, red and blue differ by up to 1.5 codes.
+struct FaintLensletMosaic {
+  cv::Mat codes = cv::Mat(kSize, kSize, CV_32FC1);
+  FaintLensletMosaic() {
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const double row = y / kLensRow, column = x / kLensColumn - 0.5 * (static_cast<int>(std::floor(row)) & 1);
+        const double dy = row - std::floor(row) - 0.5, dx = column - std::floor(column) - 0.5;
+        // A flat-topped micro-image, as the simulator's and real F01 ones are: full inside 0.35 of the pitch,
+        // falling smoothly to 0 at 0.55.
+        const double radius = std::sqrt(dx * dx + dy * dy);
+        const double profile =
+            radius < 0.35 ? 1.0 : (radius > 0.55 ? 0.0 : 0.5 + 0.5 * std::cos(M_PI * (radius - 0.35) / 0.2));
+        const double green_excess = 10.0 * (0.8 + 0.4 * x / kSize), red_minus_blue = 4.0 * y / kSize;
+        const bool green = ((x + y) & 1) == 1, blue = !green && (y & 1) == 0;
+        double signal = 14.0;
+        if (green)
+          signal += green_excess;
+        else
+          signal += (blue ? -0.5 : 0.5) * red_minus_blue;
+        codes.at<float>(y, x) = static_cast<float>(10.5 + profile * signal);
+      }
+  }
+};
+
+// How much the error of one carrier's colour (the mosaic times the carrier's sign) depends on the row inside the
+// JPEG block: its mean over each of the 8 rows of every block, largest minus smallest. This block envelope is what
+// lens rows 8.6 px apart turn into colour bands; a decoder cannot see it as anything but the scene.
+double BlockEnvelope(const cv::Mat& estimate, const cv::Mat& truth, int carrier) {
+  double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const int parity = carrier == 0 ? x + y : (carrier == 1 ? x : y);
+      sums[y % 8] += ((parity & 1) ? -1.0 : 1.0) * (estimate.at<float>(y, x) - truth.at<float>(y, x));
+    }
+  double low = sums[0], high = sums[0];
+  for (double sum : sums) {
+    low = std::min(low, sum);
+    high = std::max(high, sum);
+  }
+  return (high - low) / (kSize * kSize / 8.0);
+}
+
+cv::Mat AsBytes(const cv::Mat& codes) {
+  cv::Mat bytes;
+  codes.convertTo(bytes, CV_8UC1);  // rounds and saturates
+  return bytes;
+}
+
+TEST(JpegMosaic, CoefficientsAreReadAsStoredWithTheStandardQuality75Table) {
+  TempDir dir;
+  const FaintLensletMosaic mosaic;
+  WriteImage(AsBytes(mosaic.codes), dir / "mosaic.jpg", 8, {{"Compression", "jpeg:75"}});
+  const std::optional<JpegCoefficients> coefficients = ReadJpegCoefficients(dir / "mosaic.jpg");
+  ASSERT_TRUE(coefficients);
+  EXPECT_EQ(coefficients->width, kSize);
+  EXPECT_EQ(coefficients->blocks_x, kSize / 8);
+  // libjpeg's luminance table at quality 75: the real F01 frames carry the same (first row 8 6 5 8 12 20 26 31).
+  const float first_row[8] = {8, 6, 5, 8, 12, 20, 26, 31};
+  for (int k = 0; k < 8; ++k) EXPECT_EQ(coefficients->quant[static_cast<std::size_t>(k)], first_row[k]);
+  // Without iterations the restoration is the plain decode, within libjpeg's integer IDCT rounding.
+  MosaicRestoreOptions plain;
+  plain.iterations = 0;
+  const cv::Mat ours = RestoreJpegMosaic(*coefficients, plain);
+  const cv::Mat libjpeg = ReadImage(dir / "mosaic.jpg").pixels * 255.0;
+  EXPECT_LE(cv::norm(ours, libjpeg, cv::NORM_INF), 1.01);
+}
+
+TEST(JpegMosaic, RestorationBringsBackTheColourQuantizationTook) {
+  TempDir dir;
+  const FaintLensletMosaic mosaic;
+  WriteImage(AsBytes(mosaic.codes), dir / "mosaic.jpg", 8, {{"Compression", "jpeg:75"}});
+  const JpegCoefficients coefficients = *ReadJpegCoefficients(dir / "mosaic.jpg");
+  MosaicRestoreOptions plain;
+  plain.iterations = 0;
+  const cv::Mat decoded = RestoreJpegMosaic(coefficients, plain);
+  MosaicRestoreReport report;
+  const cv::Mat restored = RestoreJpegMosaic(coefficients, {}, &report);
+  EXPECT_EQ(report.iterations, MosaicRestoreOptions{}.iterations);
+  EXPECT_GT(report.mean_change, 0.0);
+  // Green against red and blue (the carrier most blocks keep only as the (7,7) coefficient, or lose).
+  const double plain_green = BlockEnvelope(decoded, mosaic.codes, 0);
+  const double restored_green = BlockEnvelope(restored, mosaic.codes, 0);
+  RecordProperty("green_envelope_plain", std::to_string(plain_green));
+  RecordProperty("green_envelope_restored", std::to_string(restored_green));
+  // Measured 1.74 -> 0.50 codes.
+  EXPECT_LT(restored_green, 0.5 * plain_green);
+  // And it stays closer to the true mosaic than the plain decode (the quantization bins allow the truth; the prior
+  // must not pull far from it).
+  const double plain_rms = cv::norm(decoded, mosaic.codes, cv::NORM_L2) / std::sqrt(double(kSize) * kSize);
+  const double restored_rms = cv::norm(restored, mosaic.codes, cv::NORM_L2) / std::sqrt(double(kSize) * kSize);
+  RecordProperty("rms_plain", std::to_string(plain_rms));
+  RecordProperty("rms_restored", std::to_string(restored_rms));
+  EXPECT_LT(restored_rms, plain_rms);
+  // Measured 4.44 -> 3.52 codes rms. The luminance alone (2x2 means, which hold no carrier) moves the other way,
+  // 348 -> 450 (L2 over the frame): smoothing the carriers' colour leaks into it where the colour changes within a
+  // tile, at the sharp rims of the micro-images. Recorded, not asserted; BENCHMARKS.md has the decoded views' figures.
+  cv::Mat truth_luma, plain_luma, restored_luma;
+  cv::resize(mosaic.codes, truth_luma, cv::Size(kSize / 2, kSize / 2), 0, 0, cv::INTER_AREA);
+  cv::resize(decoded, plain_luma, cv::Size(kSize / 2, kSize / 2), 0, 0, cv::INTER_AREA);
+  cv::resize(restored, restored_luma, cv::Size(kSize / 2, kSize / 2), 0, 0, cv::INTER_AREA);
+  RecordProperty("luma_l2_plain", std::to_string(cv::norm(truth_luma, plain_luma, cv::NORM_L2)));
+  RecordProperty("luma_l2_restored", std::to_string(cv::norm(truth_luma, restored_luma, cv::NORM_L2)));
+}
+
+TEST(JpegMosaic, ColourJpegsAreNotMosaicsAndBrokenFilesAreRefused) {
+  TempDir dir;
+  WriteImage(cv::Mat(16, 16, CV_8UC3, cv::Scalar(10, 200, 30)), dir / "colour.jpg", 8);
+  EXPECT_FALSE(ReadJpegCoefficients(dir / "colour.jpg"));
+  const FaintLensletMosaic mosaic;
+  WriteImage(AsBytes(mosaic.codes), dir / "mosaic.jpg", 8, {{"Compression", "jpeg:75"}});
+  const std::string bytes = lfsp::testing::ReadBytes(dir / "mosaic.jpg");
+  lfsp::testing::WriteBytes(dir / "cut.jpg", bytes.substr(0, 200));
+  EXPECT_NE(ErrorOf([&] { (void)ReadJpegCoefficients(dir / "cut.jpg"); }).find("cut.jpg: not a readable JPEG"),
+            std::string::npos)
+      << ErrorOf([&] { (void)ReadJpegCoefficients(dir / "cut.jpg"); });
+  EXPECT_NE(ErrorOf([&] { (void)ReadJpegCoefficients(dir.path()); }).find("not a regular file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lfsp::decode
