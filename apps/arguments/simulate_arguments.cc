@@ -60,6 +60,14 @@ void AddSimulateArguments(CLI::App* command, SimulateArguments& arguments) {
                    "Capture: multiplies the scene disparities (pixels per decoded view step)")
       ->capture_default_str();
   command->add_flag("!--no-white-images", lib.white_images, "Capture: do not write whites/MOD_####.RAW + .TXT");
+  command
+      ->add_option(
+          "--mosaic-jpeg", lib.mosaic_jpeg_quality,
+          "Capture: also write capture_mosaic.jpg, the mosaic as real F01 frames were exported (raw codes "
+          "scaled to 8 bits, greyscale JPEG at this quality; those frames: 75), and capture_mosaic.png, the same 8 "
+          "bits lossless; 0 = off")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   command->add_option("--compression", lib.compression_level, "gzip level of the .h5 outputs (0-9)")
       ->check(CLI::Range(0, 9))
       ->capture_default_str();

@@ -1,9 +1,12 @@
 #include "lfsp/simulate/lytro_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <opencv2/core.hpp>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
 
 namespace lfsp::simulate {
 namespace {
@@ -372,6 +375,21 @@ decode::LfpContainer BuildCaptureContainer(const CameraModel& camera, const RawC
 }
 
 std::string CaptureFileName(const CameraModel& camera) { return camera.model == "F01" ? "capture.lfp" : "capture.LFR"; }
+
+void WriteMosaicJpeg(const CameraModel& camera, const RawCapture& raw, const std::filesystem::path& path, int quality) {
+  if (quality < 1 || quality > 100) throw Error("mosaic JPEG quality " + std::to_string(quality) + " outside 1..100");
+  cv::Mat mosaic(raw.height, raw.width, CV_8UC1);
+  const double scale = 255.0 / camera.white;
+  for (int y = 0; y < raw.height; ++y) {
+    std::uint8_t* row = mosaic.ptr<std::uint8_t>(y);
+    const std::uint16_t* codes = raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width);
+    for (int x = 0; x < raw.width; ++x)
+      row[x] = static_cast<std::uint8_t>(std::min(255L, std::lround(codes[x] * scale)));
+  }
+  WriteImage(mosaic, path, 8, {{"Compression", "jpeg:" + std::to_string(quality)}});
+  std::filesystem::path lossless = path;
+  WriteImage(mosaic, lossless.replace_extension(".png"), 8);
+}
 
 void WriteWhiteImage(const CameraModel& camera, const RawCapture& white, const std::filesystem::path& raw_path) {
   const std::vector<std::uint8_t> packed = decode::PackRaw(PackingFor(camera), white.pixels, raw_path.string());

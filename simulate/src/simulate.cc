@@ -129,6 +129,11 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     const std::string capture_name = CaptureFileName(camera);
     decode::WriteLfpContainer(BuildCaptureContainer(camera, raw), out_dir / capture_name);
     result.files.push_back(capture_name);
+    if (options.mosaic_jpeg_quality > 0) {
+      WriteMosaicJpeg(camera, raw, out_dir / kMosaicJpegName, options.mosaic_jpeg_quality);
+      result.files.push_back(kMosaicJpegName);
+      result.files.push_back(std::filesystem::path(kMosaicJpegName).replace_extension(".png"));
+    }
 
     if (options.white_images) {
       step.Lap();

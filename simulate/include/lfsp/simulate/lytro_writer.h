@@ -27,6 +27,14 @@ decode::RawPacking PackingFor(const CameraModel& camera);  // 12-bit big-endian 
 decode::LfpContainer BuildCaptureContainer(const CameraModel& camera, const RawCapture& raw);
 std::string CaptureFileName(const CameraModel& camera);  // "capture.LFR" / "capture.lfp"
 
+// The capture's Bayer mosaic as the real F01 frames of Tao et al. (../shared/data/lytro_raw) were exported: the raw
+// codes scaled to 8 bits (code x 255 / white level, so the black level stays in the data) and stored as a greyscale
+// JPEG with libjpeg's standard tables at `quality` (those frames: 75); beside it the same 8-bit mosaic as a lossless
+// PNG (same name, .png), the baseline that shows what the JPEG alone costs. Written atomically. lfsp::Error for a
+// quality outside 1..100.
+void WriteMosaicJpeg(const CameraModel& camera, const RawCapture& raw, const std::filesystem::path& path, int quality);
+inline constexpr const char* kMosaicJpegName = "capture_mosaic.jpg";
+
 // MOD_####.RAW (packed like the capture) and MOD_####.TXT beside it, each written atomically.
 void WriteWhiteImage(const CameraModel& camera, const RawCapture& white, const std::filesystem::path& raw_path);
 

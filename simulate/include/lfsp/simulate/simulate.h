@@ -25,8 +25,9 @@ struct SimulateOptions {
   int ground_truth_supersampling = 2;  // decoded ground truth anti-aliasing (per axis)
   bool white_images = true;            // write whites/MOD_####.RAW + .TXT for every lens setting
   SampleStorage ground_truth_storage = SampleStorage::kFloat32;
-  int compression_level = 0;  // gzip level of the .h5 files (0-9)
-  int calibration_poses = 0;  // > 0: instead of the scene, a checkerboard at this many known poses
+  int compression_level = 0;    // gzip level of the .h5 files (0-9)
+  int calibration_poses = 0;    // > 0: instead of the scene, a checkerboard at this many known poses
+  int mosaic_jpeg_quality = 0;  // > 0: also the capture's mosaic as an 8-bit greyscale JPEG (WriteMosaicJpeg)
 };
 
 struct SimulateResult {
@@ -37,6 +38,8 @@ struct SimulateResult {
 // Writes into `out_dir` (created if needed), every file atomically:
 //   ideal-only: ideal.h5 (LF, centre disparity, labels), scene.json
 //   otherwise:  capture.LFR (Illum) / capture.lfp (F01); whites/MOD_####.RAW + .TXT; scene.json;
+//               with mosaic_jpeg_quality, capture_mosaic.jpg (the same mosaic as a real F01 frame export) and
+//               capture_mosaic.png (the same 8 bits, lossless);
 //               ground_truth/decoded.h5 (ideal LF on the decoded grid, linear, weights, disparity, labels) and
 //               ground_truth/lenslet_geometry.json.
 //   calibration_poses > 0: calibration/pose_NN/ holds each checkerboard capture (or ideal.h5 with --ideal-only) and
