@@ -15,6 +15,7 @@
 #include "lfsp/core/foreign_crash_guard.h"
 #include "lfsp/core/input_limits.h"
 #include "lfsp/core/sample_levels.h"
+#include "lfsp/core/untrusted_json.h"
 
 namespace lfsp {
 namespace fs = std::filesystem;
@@ -234,8 +235,7 @@ H5::DSetCreatPropList ChunkedPerView(const std::vector<hsize_t>& dims, int compr
 // Refuses a path that is not an HDF5 file with a one-line error, before the HDF5 library would print its own.
 void RequireHdf5File(const fs::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
+  RequireRegularFile(path);
   H5::Exception::dontPrint();
   if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
 }
@@ -258,8 +258,7 @@ Bundle ReadBundle(const fs::path& path) {
     light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromString(transfer);
     const std::string metadata = ReadStringAttribute(file, "metadata");
     if (!metadata.empty()) {
-      light_field.metadata = Metadata::parse(metadata, nullptr, /*allow_exceptions=*/false);
-      if (light_field.metadata.is_discarded()) ThrowFileError(name, "attribute 'metadata' is not valid JSON");
+      light_field.metadata = ParseUntrustedJsonObject(metadata, name + ": attribute 'metadata'");
     }
 
     if (file.nameExists("weights")) {
@@ -282,6 +281,7 @@ Bundle ReadBundle(const fs::path& path) {
     const fs::path sibling_labels = path.parent_path() / "labels.h5";
     std::error_code exists_error;
     if (!bundle.labels && fs::exists(sibling_labels, exists_error) && sibling_labels.filename() != path.filename()) {
+      RequireRegularFile(sibling_labels);
       const H5::H5File labels_file(sibling_labels.string(), H5F_ACC_RDONLY);
       if (labels_file.nameExists("GT_LABELS"))
         bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", shape, sibling_labels.string());
