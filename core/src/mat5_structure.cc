@@ -66,18 +66,16 @@ Tag ReadTag(const WordReader& word, const unsigned char* at) {
 struct InflatedElement {
   std::vector<unsigned char> prefix;  // the first bytes (at most the limit asked for)
   std::uint64_t length = 0;           // all the bytes the stream inflates to
+  std::string problem;                // what is wrong with the stream; empty if it is intact and complete
 };
 
 // Inflates the whole zlib stream held in `compressed` bytes at `offset` of the file a piece at a time, keeping only
-// its first `limit` bytes, so that a lying element costs no memory beyond its prefix. Throws unless the stream is
-// intact and complete: matio reads a damaged stream as zeros without a word (a .mat with flipped bytes inside its
-// compressed light field came back mostly black), so zlib's own check (Adler-32 of the inflated bytes) must pass and
-// the stream must end where the element does.
+// its first `limit` bytes, so that a lying element costs no memory beyond its prefix. Says what is wrong unless the
+// stream is intact and complete: matio reads a damaged stream as zeros without a word (a .mat with flipped bytes
+// inside its compressed light field came back mostly black), so zlib's own check (Adler-32 of the inflated bytes)
+// must pass and the stream must end where the element does.
 InflatedElement InflateElement(std::ifstream& file, std::uint64_t offset, std::uint32_t compressed, std::size_t limit,
                                const std::string& name) {
-  const auto fail = [&](const std::string& problem) {
-    ThrowFileError(name, "compressed variable at byte " + std::to_string(offset - 8) + " " + problem);
-  };
   InflatedElement result;
   result.prefix.resize(limit);
   z_stream stream{};
@@ -106,11 +104,13 @@ InflatedElement InflateElement(std::ifstream& file, std::uint64_t offset, std::u
     }
   }
   const bool consumed_all = left == 0 && stream.avail_in == 0;
-  const std::string zlib_message = stream.msg != nullptr ? stream.msg : "";
+  if (status == Z_DATA_ERROR)
+    result.problem = "is corrupt (zlib: " + std::string(stream.msg != nullptr ? stream.msg : "data error") + ")";
+  else if (status != Z_STREAM_END)
+    result.problem = "is cut off: its zlib stream does not end inside the element";
+  else if (!consumed_all)
+    result.problem = "has bytes after the end of its zlib stream";
   inflateEnd(&stream);
-  if (status == Z_DATA_ERROR) fail("is corrupt (zlib: " + zlib_message + ")");
-  if (status != Z_STREAM_END) fail("is cut off: its zlib stream does not end inside the element");
-  if (!consumed_all) fail("has bytes after the end of its zlib stream");
   result.prefix.resize(static_cast<std::size_t>(std::min<std::uint64_t>(result.length, limit)));
   return result;
 }
@@ -176,8 +176,10 @@ void CheckMat5Structure(const fs::path& path) {
                                " bytes)");
     if (type == kMiCompressed) {
       const InflatedElement element = InflateElement(file, offset + 8, bytes, kHeaderBytes, name);
+      CheckVariableHeader(word, element.prefix, offset, name);  // first: what the header declares is more telling
+      if (!element.problem.empty())
+        ThrowFileError(name, "compressed variable at byte " + std::to_string(offset) + " " + element.problem);
       CheckInflatedLength(word, element, offset, name);
-      CheckVariableHeader(word, element.prefix, offset, name);
     } else if (type == kMiMatrix) {
       std::vector<unsigned char> element(std::min<std::uint64_t>(kHeaderBytes, 8 + bytes));
       file.seekg(static_cast<std::streamoff>(offset));
