@@ -39,14 +39,15 @@ function(lfsp_set_warnings target)
 endfunction()
 
 # lfsp_add_fuzz_target(<stage> <name> SOURCES ... [DEPENDS ...] [INCLUDES ...] [SEEDS dir...] [REPLAY arg...]
-#                      [TIMEOUT s])
+#                      [DICT file] [TIMEOUT s])
 #   A fuzz target of one parser (its LLVMFuzzerTestOneInput in SOURCES), registered in CTest as <stage>/fuzz_<name>.
 #   With -DLFSP_FUZZ=ON under clang (`make fuzz`): the libFuzzer binary fuzz_<name>, the whole tree instrumented (top
 #   CMakeLists), its CTest test replaying the SEEDS folders, and a line in fuzz_targets.txt for tools/fuzz. Otherwise:
 #   fuzz_replay_<name> (tests/decode/fuzz/replay_main.cc) run with REPLAY, the committed seeds and deterministic
-#   mutations of real files.
+#   mutations of real files. DICT is a libFuzzer dictionary (tokens the mutations insert: deep JSON nesting, extreme
+#   floats) that tools/fuzz passes as -dict=.
 function(lfsp_add_fuzz_target stage name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPENDS;INCLUDES;SEEDS;REPLAY" ${ARGN})
+  cmake_parse_arguments(ARG "" "TIMEOUT;DICT" "SOURCES;DEPENDS;INCLUDES;SEEDS;REPLAY" ${ARGN})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 120)
   endif()
@@ -62,7 +63,8 @@ function(lfsp_add_fuzz_target stage name)
     endforeach()
     add_test(NAME ${stage}/fuzz_${name} COMMAND ${target} -runs=0 ${existing_seeds})
     string(REPLACE ";" " " seed_list "${existing_seeds}")
-    file(APPEND "${CMAKE_BINARY_DIR}/fuzz_targets.txt" "${stage}/${name}|${CMAKE_CURRENT_BINARY_DIR}/${target}|${seed_list}\n")
+    file(APPEND "${CMAKE_BINARY_DIR}/fuzz_targets.txt"
+         "${stage}/${name}|${CMAKE_CURRENT_BINARY_DIR}/${target}|${seed_list}|${ARG_DICT}\n")
     add_dependencies(lfsp_fuzz_targets ${target})
   else()
     set(target fuzz_replay_${name})

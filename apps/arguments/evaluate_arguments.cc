@@ -1,5 +1,8 @@
 #include "arguments/evaluate_arguments.h"
 
+#include "arguments/refocus_arguments.h"
+#include "lfsp/core/error.h"
+
 namespace lfsp::cli {
 
 void AddSegmentationEvaluationArguments(CLI::App* command, SegmentationEvaluationArguments& arguments) {
@@ -21,6 +24,8 @@ segment::EvaluationOptions ToEvaluationOptions(const SegmentationEvaluationArgum
   evaluation.boundary_tolerance = arguments.tolerance;
   evaluation.baselines = arguments.baselines;
   evaluation.refocus = !arguments.no_refocus;
+  for (const double level : arguments.refocus_levels)
+    RequireRefocusDisparity(static_cast<float>(level), OptionName("refocus_levels"));
   evaluation.refocus_levels = arguments.refocus_levels;
   return evaluation;
 }

@@ -33,6 +33,7 @@ struct EvaluateSegmentationOptions {
 };
 
 void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
+  const segment::EvaluationOptions evaluation = ToEvaluationOptions(options.scoring);  // checks the levels first
   const Bundle bundle = ReadBundle(options.input);
   if (!bundle.labels) throw Error(options.input + ": no 'labels' dataset (write it with lfsp segment)");
   std::optional<DisparityMap> gt_disparity;
@@ -49,7 +50,6 @@ void RunEvaluateSegmentation(const EvaluateSegmentationOptions& options) {
     }
   }
 
-  const segment::EvaluationOptions evaluation = ToEvaluationOptions(options.scoring);
   const stages::GroundTruth truth{gt_disparity ? &*gt_disparity : nullptr, gt_labels ? &*gt_labels : nullptr};
   nlohmann::json report = stages::EvaluateSegmentationBundle(bundle, truth, evaluation, options.input);
   report["input"] = options.input;

@@ -251,24 +251,45 @@ nlohmann::ordered_json Degradation(const std::vector<Row>& rows) {
   return out;
 }
 
-}  // namespace
-
-NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
-  if (options.capture_views < 0 || (options.capture_views != 0 && options.capture_views % 2 == 0)) {
-    throw Error("noise study: --capture-views must be 0 (all) or odd, so the centre view stays the centre; got " +
-                std::to_string(options.capture_views));
-  }
-  const Stopwatch stopwatch;
-  fs::create_directories(options.out);
-  std::vector<Row> rows;
-  Progress progress("noise study", options.sigmas.size() + options.exposures.size());
-
-  // Image noise on the ideal light field.
+simulate::RenderOptions IdealRenderOptions(const NoiseStudyOptions& options) {
   simulate::RenderOptions render;
   render.nu = render.nv = options.views;
   render.width = options.width;
   render.height = options.height;
-  const simulate::Scene scene = simulate::SceneFromSpec(options.scene);
+  return render;
+}
+
+// Every option is checked before the first rendering: `--exposures 0` was refused after 6 s of work, leaving
+// captures/exposure_0.000000/ behind.
+void CheckOptions(const NoiseStudyOptions& options) {
+  if (options.capture_views < 0 || (options.capture_views != 0 && options.capture_views % 2 == 0)) {
+    throw Error("noise study: --capture-views must be 0 (all) or odd, so the centre view stays the centre; got " +
+                std::to_string(options.capture_views));
+  }
+  simulate::CheckRenderOptions(IdealRenderOptions(options));
+  for (const double sigma : options.sigmas)
+    if (!(sigma >= 0.0 && sigma <= 1.0)) throw Error("--sigmas: " + std::to_string(sigma) + " is not in [0, 1]");
+  if (options.exposures.empty()) throw Error("--exposures: at least one exposure is needed (the reference)");
+  for (const double exposure : options.exposures) {
+    simulate::CaptureOptions capture;
+    capture.exposure = exposure;
+    try {
+      simulate::CheckCaptureOptions(capture);
+    } catch (const Error& error) {
+      throw Error("--exposures: " + std::to_string(exposure) + ": " + error.what());
+    }
+  }
+  (void)simulate::CameraPreset(options.camera);  // an unknown name throws
+}
+
+// The study itself, into the folder RunNoiseStudy made.
+NoiseStudyResult RunNoiseStudyInto(const NoiseStudyOptions& options, const simulate::Scene& scene,
+                                   const Stopwatch& stopwatch) {
+  std::vector<Row> rows;
+  Progress progress("noise study", options.sigmas.size() + options.exposures.size());
+
+  // Image noise on the ideal light field.
+  const simulate::RenderOptions render = IdealRenderOptions(options);
   simulate::RenderedLightField ideal = simulate::RenderLightField(scene, render);
   Trial clean;
   clean.gt_labels = ideal.labels;
@@ -330,6 +351,24 @@ NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
   summary["wall_seconds"] = stopwatch.Seconds();
   stages::WriteJsonSummary(summary, options.out / "summary.json");
   return result;
+}
+
+}  // namespace
+
+NoiseStudyResult RunNoiseStudy(const NoiseStudyOptions& options) {
+  CheckOptions(options);
+  const simulate::Scene scene = simulate::SceneFromSpec(options.scene);
+  const Stopwatch stopwatch;
+  std::error_code ec;
+  const bool made_out = !fs::exists(options.out, ec);
+  fs::create_directories(options.out);
+  try {
+    return RunNoiseStudyInto(options, scene, stopwatch);
+  } catch (...) {
+    // Nothing half-done stays: the captures' work folder always, the output folder if this run made it.
+    fs::remove_all(made_out ? options.out : options.out / "captures", ec);
+    throw;
+  }
 }
 
 }  // namespace lfsp::noise_study

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/stopwatch.h"
@@ -37,12 +38,40 @@ void WriteLabelledBundle(LightField& light_field, const DisparityMap& disparity,
   WriteBundle(labelled, out, CompactBundleOptions(labelled.light_field));
 }
 
+// The EPI pictures' row and column must lie in the view: checked before the segmentation, not after it.
+void RequireEpiLinesInside(const SegmentStageOptions& options, const LightFieldShape& shape) {
+  if (options.epi_row >= shape.height)
+    throw Error(OptionName("epi_row") + ": row " + std::to_string(options.epi_row) + " is outside the " +
+                std::to_string(shape.height) + "-pixel-high views");
+  if (options.epi_column >= shape.width)
+    throw Error(OptionName("epi_column") + ": column " + std::to_string(options.epi_column) + " is outside the " +
+                std::to_string(shape.width) + "-pixel-wide views");
+}
+
+// The files this run has written beside OUT, removed again if the stage fails before its last one: the pictures and
+// planes of a segmentation whose bundle was never written are no result.
+class SideOutputs {
+ public:
+  ~SideOutputs() {
+    std::error_code ec;
+    if (!complete_)
+      for (const fs::path& path : paths_) fs::remove(path, ec);
+  }
+  void Written(fs::path path) { paths_.push_back(std::move(path)); }
+  void Complete() { complete_ = true; }
+
+ private:
+  std::vector<fs::path> paths_;
+  bool complete_ = false;
+};
+
 }  // namespace
 
 SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& disparity,
                                    const std::string& disparity_source, const SegmentStageOptions& options,
                                    const fs::path& out, nlohmann::ordered_json summary) {
   const Stopwatch stopwatch;
+  RequireEpiLinesInside(options, light_field.shape());
   SegmentStageResult result;
   segment::LfspResult& lfsp = result.lfsp = segment::SegmentLightField(light_field, disparity, options.params);
   spdlog::info("{} superpixels, {} label moves in {} iterations ({:.2f} s)", lfsp.superpixels, lfsp.label_moves,
@@ -55,10 +84,15 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
   const fs::path centre_path = Beside(out, ".overlay_centre.png");
   const fs::path epi_h_path = Beside(out, ".overlay_epi_h.png");
   const fs::path epi_v_path = Beside(out, ".overlay_epi_v.png");
+  SideOutputs side_outputs;
   WriteImage(CentreViewBoundaries(light_field, lfsp.labels), centre_path);
+  side_outputs.Written(centre_path);
   WriteImage(HorizontalEpiBoundaries(light_field, lfsp.labels, row), epi_h_path);
+  side_outputs.Written(epi_h_path);
   WriteImage(VerticalEpiBoundaries(light_field, lfsp.labels, column), epi_v_path);
+  side_outputs.Written(epi_v_path);
   WriteJsonSummary(segment::PlanesToJson(lfsp.planes), planes_path);
+  side_outputs.Written(planes_path);
   if (!options.labels_png.empty()) segment::WriteLabelPngs(lfsp.labels, options.labels_png);
   // The parameters travel with the labels: `lfsp evaluate segmentation` re-runs its refocus sweep with them.
   light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.params, disparity_source);
@@ -93,6 +127,7 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
                                 {"segmentation", lfsp.timings.total_seconds},
                                 {"stage", stopwatch.Seconds()}};
   WriteJsonSummary(summary, SummaryPathFor(out));
+  side_outputs.Complete();
   result.summary = std::move(summary);
   return result;
 }

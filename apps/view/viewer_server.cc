@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/untrusted_json.h"
 #include "view/viewer_export.h"
 #include "view/web_assets.h"
 
@@ -66,7 +67,7 @@ void AddExportRoute(httplib::Server& server, const ViewerData& data, const std::
   server.Post("/api/export", [&data, folder](const httplib::Request& request, httplib::Response& response) {
     const std::lock_guard lock(one_export_at_a_time);
     try {
-      const nlohmann::json edit = nlohmann::json::parse(request.body);
+      const nlohmann::json edit = ParseUntrustedJson(request.body, "export request");
       const nlohmann::json result = ExportEdit(data, edit, folder);
       spdlog::info("exported: {}", result.at("command").get<std::string>());
       response.set_content(result.dump(), "application/json");

@@ -8,6 +8,8 @@
 #include "lfsp/calibrate/lftoolbox_calibration.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
+#include "lfsp/core/untrusted_json.h"
 
 namespace lfsp::calibrate {
 namespace {
@@ -168,15 +170,7 @@ void WriteCalibration(const Calibration& calibration, const std::filesystem::pat
 }
 
 Calibration ReadCalibration(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) ThrowFileError(path.string(), "cannot open the calibration file");
-  json j;
-  try {
-    j = json::parse(file);
-  } catch (const json::exception& e) {
-    ThrowFileError(path.string(), std::string("not valid JSON: ") + e.what());
-  }
-  return CalibrationFromJson(j, path.string());
+  return CalibrationFromJson(ParseUntrustedJson(ReadWholeFile(path), path.string()), path.string());
 }
 
 }  // namespace lfsp::calibrate

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
 
 namespace lfsp {
 namespace {
@@ -55,13 +56,7 @@ Metadata ParseHciConfig(const std::string& text, const std::string& source_name)
   return result;
 }
 
-Metadata ReadHciConfig(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) ThrowFileError(path.string(), "cannot open");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return ParseHciConfig(content.str(), path.string());
-}
+Metadata ReadHciConfig(const std::filesystem::path& path) { return ParseHciConfig(ReadWholeFile(path), path.string()); }
 
 std::string FormatHciConfig(const Metadata& metadata) {
   std::ostringstream out;

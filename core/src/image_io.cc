@@ -150,6 +150,7 @@ void CheckPngIsComplete(const std::filesystem::path& path) {
 // Opens an image for reading after the checks every reader needs: complete PNG chunks, a layout lfsp handles.
 std::unique_ptr<OIIO::ImageInput> OpenChecked(const std::filesystem::path& path) {
   const std::string name = path.string();
+  RequireRegularFile(path);
   CheckPngIsComplete(path);
   auto input = OIIO::ImageInput::open(name);
   if (!input) {

@@ -1,7 +1,9 @@
 #include "lfsp/core/input_limits.h"
 
 #include <atomic>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "lfsp/core/error.h"
 
@@ -37,6 +39,22 @@ void CheckDeclaredAllocation(const std::string& where, std::uint64_t declared_by
                               std::to_string(file_bytes) +
                               " bytes: the declared size is not plausible (if the data is genuine, raise " +
                               OptionName("max_memory") + " to trust it)");
+}
+
+void RequireRegularFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) return;
+  ThrowFileError(path.string(), std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+}
+
+std::string ReadWholeFile(const std::filesystem::path& path) {
+  RequireRegularFile(path);
+  std::ifstream file(path, std::ios::binary);
+  if (!file) ThrowFileError(path.string(), "cannot open");
+  std::ostringstream content;
+  content << file.rdbuf();
+  if (file.bad()) ThrowFileError(path.string(), "read error");
+  return content.str();
 }
 
 std::uint64_t FileBytes(const std::filesystem::path& path) {

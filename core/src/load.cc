@@ -37,9 +37,28 @@ void RequireFiniteSamples(const LightField& light_field, const std::string& name
                              std::to_string(at.v) + ") at x " + std::to_string(pixel % shape.width) + ", y " +
                              std::to_string(pixel / shape.width));
   }
-  if (light_field.HasWeights() &&
-      first_bad(light_field.weights().data(), light_field.weights().size()) != light_field.weights().size())
+  if (!light_field.HasWeights()) return;
+  const Array4D<float>& weights = light_field.weights();
+  if (first_bad(weights.data(), weights.size()) != weights.size())
     ThrowFileError(name, "holds a non-finite ray weight (NaN or infinity)");
+  const float* negative = std::find_if(weights.data(), weights.data() + weights.size(), [](float w) { return w < 0; });
+  if (negative != weights.data() + weights.size())
+    ThrowFileError(name, "holds a negative ray weight (" + std::to_string(*negative) + "); weights lie in [0, 1]");
+}
+
+void RequireUsableDisparityRange(const Metadata& metadata, const std::string& name) {
+  if (!metadata.is_object() || !metadata.contains("meta") || !metadata["meta"].is_object()) return;
+  const Metadata& meta = metadata["meta"];
+  for (const char* key : {"disp_min", "disp_max"}) {
+    if (!meta.contains(key)) continue;
+    const Metadata& value = meta[key];
+    if (!value.is_number() || !std::isfinite(value.get<double>()))
+      ThrowFileError(name,
+                     std::string("metadata field meta.") + key + " = " + value.dump() + " is not a finite number");
+  }
+  if (const auto range = DisparityRangeFromMetadata(metadata); range && range->min > range->max)
+    ThrowFileError(name, "metadata disparity range meta.disp_min " + std::to_string(range->min) + " > meta.disp_max " +
+                             std::to_string(range->max));
 }
 
 LightFieldFormat DetectLightFieldFormat(const fs::path& path) {
@@ -93,6 +112,7 @@ Bundle ReadAnyFormat(const fs::path& path, const LoadOptions& options) {
 Bundle LoadLightField(const fs::path& path, const LoadOptions& options) {
   Bundle bundle = ReadAnyFormat(path, options);
   RequireFiniteSamples(bundle.light_field, path.string());
+  RequireUsableDisparityRange(bundle.light_field.metadata, path.string());
   return bundle;
 }
 

@@ -63,33 +63,70 @@ Tag ReadTag(const WordReader& word, const unsigned char* at) {
   return tag;
 }
 
-// The first `limit` bytes of the zlib stream held in `compressed` bytes at `offset` of the file (fewer if the stream
-// is shorter), read and inflated a piece at a time so that a lying element costs no more than its prefix.
-std::vector<unsigned char> InflatePrefix(std::ifstream& file, std::uint64_t offset, std::uint32_t compressed,
-                                         std::size_t limit, const std::string& name) {
-  std::vector<unsigned char> out(limit);
+struct InflatedElement {
+  std::vector<unsigned char> prefix;  // the first bytes (at most the limit asked for)
+  std::uint64_t length = 0;           // all the bytes the stream inflates to
+  std::string problem;                // what is wrong with the stream; empty if it is intact and complete
+};
+
+// Inflates the whole zlib stream held in `compressed` bytes at `offset` of the file a piece at a time, keeping only
+// its first `limit` bytes, so that a lying element costs no memory beyond its prefix. Says what is wrong unless the
+// stream is intact and complete: matio reads a damaged stream as zeros without a word (a .mat with flipped bytes
+// inside its compressed light field came back mostly black), so zlib's own check (Adler-32 of the inflated bytes)
+// must pass and the stream must end where the element does.
+InflatedElement InflateElement(std::ifstream& file, std::uint64_t offset, std::uint32_t compressed, std::size_t limit,
+                               const std::string& name) {
+  InflatedElement result;
+  result.prefix.resize(limit);
   z_stream stream{};
   if (inflateInit(&stream) != Z_OK) ThrowFileError(name, "cannot start zlib");
-  stream.next_out = out.data();
-  stream.avail_out = static_cast<uInt>(out.size());
-  std::array<unsigned char, 4096> chunk{};
+  std::array<unsigned char, 1 << 16> chunk{};
+  std::array<unsigned char, 1 << 16> scratch{};
   std::uint64_t left = compressed;
   file.seekg(static_cast<std::streamoff>(offset));
   int status = Z_OK;
-  while (stream.avail_out > 0 && left > 0 && status == Z_OK) {
+  while (status == Z_OK && left > 0) {
     const std::size_t take = static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
     if (!file.read(reinterpret_cast<char*>(chunk.data()), static_cast<std::streamsize>(take))) break;
     left -= take;
     stream.next_in = chunk.data();
     stream.avail_in = static_cast<uInt>(take);
-    while (stream.avail_in > 0 && stream.avail_out > 0 && status == Z_OK) status = inflate(&stream, Z_NO_FLUSH);
+    while (stream.avail_in > 0 && status == Z_OK) {
+      // The prefix first, then the scratch buffer, whose bytes are only counted.
+      const bool in_prefix = result.length < limit;
+      unsigned char* target = in_prefix ? result.prefix.data() + result.length : scratch.data();
+      const std::size_t room = in_prefix ? limit - static_cast<std::size_t>(result.length) : scratch.size();
+      stream.next_out = target;
+      stream.avail_out = static_cast<uInt>(room);
+      status = inflate(&stream, Z_NO_FLUSH);
+      result.length += room - stream.avail_out;
+      if (status == Z_BUF_ERROR && stream.avail_out > 0) status = Z_OK;  // needs more input: the outer loop reads it
+    }
   }
-  const std::size_t produced = out.size() - stream.avail_out;
+  const bool consumed_all = left == 0 && stream.avail_in == 0;
+  if (status == Z_DATA_ERROR)
+    result.problem = "is corrupt (zlib: " + std::string(stream.msg != nullptr ? stream.msg : "data error") + ")";
+  else if (status != Z_STREAM_END)
+    result.problem = "is cut off: its zlib stream does not end inside the element";
+  else if (!consumed_all)
+    result.problem = "has bytes after the end of its zlib stream";
   inflateEnd(&stream);
-  if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR)
-    ThrowFileError(name, "compressed variable at byte " + std::to_string(offset - 8) + " is not a valid zlib stream");
-  out.resize(produced);
-  return out;
+  result.prefix.resize(static_cast<std::size_t>(std::min<std::uint64_t>(result.length, limit)));
+  return result;
+}
+
+// The inflated element must be exactly its tag and the bytes the tag declares (a short stream would leave matio to
+// fill the rest with zeros).
+void CheckInflatedLength(const WordReader& word, const InflatedElement& element, std::uint64_t offset,
+                         const std::string& name) {
+  if (element.prefix.size() < 8)
+    ThrowFileError(name, "compressed variable at byte " + std::to_string(offset) + " inflates to " +
+                             std::to_string(element.length) + " bytes");
+  const Tag tag = ReadTag(word, element.prefix.data());
+  if (element.length != tag.size && element.length != 8 + std::uint64_t{tag.bytes})
+    ThrowFileError(name, "compressed variable at byte " + std::to_string(offset) + " inflates to " +
+                             std::to_string(element.length) + " bytes, but its element declares " +
+                             std::to_string(8 + std::uint64_t{tag.bytes}));
 }
 
 // Checks the header of the variable (a miMATRIX element) in `element`, which starts at its tag; `offset` names it.
@@ -138,7 +175,11 @@ void CheckMat5Structure(const fs::path& path) {
                                std::to_string(bytes) + " bytes, past the end of the file (" + std::to_string(size) +
                                " bytes)");
     if (type == kMiCompressed) {
-      CheckVariableHeader(word, InflatePrefix(file, offset + 8, bytes, kHeaderBytes, name), offset, name);
+      const InflatedElement element = InflateElement(file, offset + 8, bytes, kHeaderBytes, name);
+      CheckVariableHeader(word, element.prefix, offset, name);  // first: what the header declares is more telling
+      if (!element.problem.empty())
+        ThrowFileError(name, "compressed variable at byte " + std::to_string(offset) + " " + element.problem);
+      CheckInflatedLength(word, element, offset, name);
     } else if (type == kMiMatrix) {
       std::vector<unsigned char> element(std::min<std::uint64_t>(kHeaderBytes, 8 + bytes));
       file.seekg(static_cast<std::streamoff>(offset));

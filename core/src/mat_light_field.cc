@@ -189,8 +189,7 @@ LightField ReadV5(const fs::path& path) {
 
 LightField ReadMatLightField(const fs::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) ThrowFileError(name, "no such file");
+  RequireRegularFile(path);
   H5::Exception::dontPrint();
   LightField light_field = H5Fis_hdf5(name.c_str()) > 0 ? ReadV73(path) : ReadV5(path);
   light_field.transfer = Transfer::kSrgb;  // the file does not say; assumed display-encoded, as PNG views are

@@ -15,19 +15,12 @@
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
+#include "lfsp/core/input_limits.h"
 
 namespace lfsp {
 namespace {
 
 constexpr int kMaxDimension = 1 << 16;
-
-std::string ReadWholeFile(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) ThrowFileError(path.string(), "cannot open");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return content.str();
-}
 
 // Reads one whitespace-delimited header token starting at `pos`; leaves `pos` on the delimiter after it.
 std::string NextToken(const std::string& bytes, std::size_t& pos, std::size_t limit) {

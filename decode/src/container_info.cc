@@ -4,8 +4,10 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
+#include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/pfm.h"
@@ -196,6 +198,8 @@ DisparityMap FloatMap(std::span<const std::uint8_t> payload, int width, int heig
   return map;
 }
 
+constexpr const char* kManifestName = "manifest.json";
+
 struct PlannedFile {
   std::string name;
   std::span<const std::uint8_t> bytes;  // written as is, unless `map` is set
@@ -221,8 +225,15 @@ std::vector<PlannedFile> PlanExtraction(const LytroCapture& capture) {
     }
   }
   std::map<ItemKind, std::size_t> counters;
+  // Each payload is extracted once, however many references name it: a table of contents that listed one frame
+  // 100,000 times wrote 17 GB from a 1.6 MB file. So the payloads written add up to at most the input's size.
+  std::set<int> extracted;  // section indices; kRawPairPayload for the .RAW of a raw + metadata pair
+  constexpr int kRawPairPayload = -1;
   for (const EmbeddedItem& item : capture.items) {
     if (!item.present()) continue;
+    if (item.kind == ItemKind::kFrameMetadata || item.kind == ItemKind::kPrivateMetadata)
+      continue;  // written above as parsed JSON
+    if (!extracted.insert(capture.raw_path.empty() ? item.section : kRawPairPayload).second) continue;
     const std::span<const std::uint8_t> payload =
         capture.raw_path.empty()
             ? std::span<const std::uint8_t>(capture.container.sections[static_cast<std::size_t>(item.section)].payload)
@@ -232,7 +243,7 @@ std::vector<PlannedFile> PlanExtraction(const LytroCapture& capture) {
     switch (item.kind) {
       case ItemKind::kFrameMetadata:
       case ItemKind::kPrivateMetadata:
-        break;  // written above as parsed JSON
+        break;
       case ItemKind::kRawImage:
         plan.push_back({n ? Numbered("raw_image", n, ".raw") : "raw_image.raw", payload, {}, {}});
         break;
@@ -274,19 +285,43 @@ std::vector<PlannedFile> PlanExtraction(const LytroCapture& capture) {
     }
   }
   for (const std::size_t i : capture.UnreferencedSections()) {
+    // An empty section holds nothing to extract (a container padded with 20,000 of them made 20,000 empty files).
+    if (capture.container.sections[i].payload.empty()) continue;
     plan.push_back({Numbered("unreferenced_section", i, ".bin"), capture.container.sections[i].payload, {}, {}});
   }
-  // Two archived names could collide after SafeName; number the duplicates rather than overwrite.
-  std::map<std::string, int> seen;
+  // Two archived names could collide after SafeName; number the duplicates rather than overwrite (the manifest
+  // included, which is written last).
+  std::map<std::string, int> seen = {{std::string(kManifestName), 1}};
   for (PlannedFile& file : plan) {
     if (seen[file.name]++ > 0) file.name = std::to_string(seen[file.name] - 1) + "_" + file.name;
   }
   return plan;
 }
 
-void WriteText(const std::string& text, const std::filesystem::path& path) {
-  WriteFileBytesAtomic(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()),
-                       path);
+// Writes one file inside the extraction's temporary folder. No temporary of its own: the folder is swapped in whole
+// (an AtomicOutput per file scanned the folder for stale temporaries, quadratic in the 20,000 files of a hostile
+// container).
+void WriteInto(std::span<const std::uint8_t> bytes, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) ThrowFileError(path.string(), "write failed (disk full?)");
+}
+
+void WriteTextInto(const std::string& text, const std::filesystem::path& path) {
+  WriteInto(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), path);
+}
+
+// The extraction replaces `out_dir` whole: only an empty folder or an earlier extraction (it has a manifest).
+void CheckReplaceableExtractionFolder(const std::filesystem::path& out_dir) {
+  std::error_code ec;
+  if (!std::filesystem::exists(out_dir, ec)) return;
+  if (!std::filesystem::is_directory(out_dir, ec))
+    ThrowFileError(out_dir.string(), "exists and is not a folder; refusing to replace it");
+  if (!std::filesystem::is_empty(out_dir, ec) && !std::filesystem::exists(out_dir / kManifestName, ec))
+    ThrowFileError(out_dir.string(),
+                   "exists, is not empty and holds no earlier extraction (no manifest.json); "
+                   "refusing to replace it");
 }
 
 }  // namespace
@@ -447,29 +482,30 @@ std::vector<std::filesystem::path> ExtractLytroFile(const std::filesystem::path&
   const LytroCapture capture = OpenLytroCapture(path);
   const ordered_json description = DescribeCapture(capture, path);  // one read, one SHA-1 pass
   std::vector<PlannedFile> plan = PlanExtraction(capture);          // throws before anything is written
+  CheckReplaceableExtractionFolder(out_dir);
+  // Built under a temporary name and renamed into place when complete, as `pipeline` builds its folder.
+  AtomicOutput folder(out_dir);
   std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec || !std::filesystem::is_directory(out_dir)) {
-    throw Error(out_dir.string() + ": cannot create the output folder" + (ec ? " (" + ec.message() + ")" : ""));
-  }
+  std::filesystem::create_directory(folder.temporary(), ec);
+  if (ec) ThrowFileError(out_dir.string(), "cannot create the output folder (" + ec.message() + ")");
   std::vector<std::filesystem::path> written;
   ordered_json files = ordered_json::array();
   for (const PlannedFile& file : plan) {
-    const std::filesystem::path target = out_dir / file.name;
+    const std::filesystem::path target = folder.temporary() / file.name;
     if (file.map) {
       WritePfm(*file.map, target);
     } else if (!file.bytes.empty()) {
-      WriteFileBytesAtomic(file.bytes, target);
+      WriteInto(file.bytes, target);
     } else {
-      WriteText(file.text, target);
+      WriteTextInto(file.text, target);
     }
-    written.push_back(target);
+    written.push_back(folder.destination() / file.name);
     files.push_back(file.name);
   }
   ordered_json manifest = {{"description", description}, {"files", files}};
-  const std::filesystem::path manifest_path = out_dir / "manifest.json";
-  WriteText(manifest.dump(2), manifest_path);
-  written.push_back(manifest_path);
+  WriteTextInto(manifest.dump(2), folder.temporary() / kManifestName);
+  written.push_back(folder.destination() / kManifestName);
+  folder.Commit();
   return written;
 }
 

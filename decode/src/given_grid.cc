@@ -6,6 +6,7 @@
 #include "lattice.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/json_fields.h"
+#include "lfsp/core/untrusted_json.h"
 #include "lfsp/decode/lfp_container.h"
 
 namespace lfsp::decode {
@@ -20,10 +21,8 @@ nlohmann::json ParseGridFile(const std::filesystem::path& path) {
   if (!ec && size > kMaxGridFileBytes)
     throw Error(path.string() + ": " + std::to_string(size) + " bytes is too large for a lenslet grid file");
   const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
-  const nlohmann::json document = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (document.is_discarded() || !document.is_object())
-    throw Error(path.string() + ": not a JSON object (expected an lfsp grid or an LFToolbox LensletGridModel)");
-  return document;
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  return ParseUntrustedJsonObject(text, path.string());
 }
 
 bool IsLfToolboxModel(const nlohmann::json& json) { return json.is_object() && json.contains("HSpacing"); }

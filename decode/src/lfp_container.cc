@@ -11,6 +11,7 @@
 #include "json_text.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
 
 namespace lfsp::decode {
 namespace {
@@ -226,10 +227,7 @@ void WriteLfpContainer(const LfpContainer& container, const std::filesystem::pat
 }
 
 std::vector<std::uint8_t> ReadFileBytes(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw Error(path.string() + ": " + (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
-  }
+  RequireRegularFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot open for reading");
   in.seekg(0, std::ios::end);

@@ -9,6 +9,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/json_fields.h"
 #include "lfsp/core/parallel_for.h"
+#include "lfsp/core/untrusted_json.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/decode/lytro_capture.h"
 
@@ -273,12 +274,7 @@ void WriteWhiteImageDatabase(const WhiteImageDatabase& db, const fs::path& path)
 
 WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
   const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(AsText(bytes));
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string() + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json doc = ParseUntrustedJson(AsText(bytes), path.string());
   if (!doc.is_object() || !doc.contains("lfsp_white_image_database") || !doc["entries"].is_array()) {
     throw Error(path.string() + ": not an lfsp white-image database (no lfsp_white_image_database / entries)");
   }

@@ -49,9 +49,7 @@ Labels CarryCentreLabels(const Labels& labels, const DisparityMap& centre_dispar
       }
     }
     if (view == c) continue;
-    const int reach =
-        static_cast<int>(std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv))))) + 2;
-    FillHoles(out, depth.data(), w, h, du, dv, std::min(reach, 512));
+    FillHoles(out, depth.data(), w, h, du, dv, FillReach(max_abs, du, dv));
   }
   return carried;
 }

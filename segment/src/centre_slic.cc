@@ -3,8 +3,11 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/ximgproc/slic.hpp>
+#include <string>
 #include <unordered_map>
 #include <vector>
+
+#include "lfsp/core/error.h"
 
 namespace lfsp::segment {
 
@@ -20,6 +23,26 @@ int CompactLabels(cv::Mat& labels) {
   return static_cast<int>(renumber.size());
 }
 
+namespace {
+
+// OpenCV's SLIC sums squared feature differences in float and gives a pixel to a seed only when that distance is
+// below FLT_MAX. A disparity map of 3e38, scaled, overflows to infinity: every distance is then infinite or NaN, no
+// seed claims any pixel, and the "superpixels" are SLIC's initial labels, not a segmentation. Features within
+// +-kLargestFeature keep every distance finite (four channels of (2e15)^2 sum to 1.6e31, far below 3.4e38), so larger
+// ones are refused as input that cannot be segmented.
+constexpr double kLargestFeature = 1e15;
+
+void RequireBounded(const cv::Mat& features, const char* what) {
+  const cv::Mat values = features.reshape(1);
+  if (cv::checkRange(values, true, nullptr, -kLargestFeature, kLargestFeature)) return;
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(values, &lowest, &highest);
+  throw Error(std::string("LFSP: the centre view's ") + what + " are too large to segment (scaled to " +
+              std::to_string(lowest) + " .. " + std::to_string(highest) + ", beyond +-1e15 or not finite)");
+}
+
+}  // namespace
+
 cv::Mat CentreSuperpixels(const cv::Mat& lab, const cv::Mat& disparity, double disparity_range,
                           const LfspParams& params, int& count) {
   // OpenCV's SLIC measures sum over channels of squared differences plus (ruler / size)^2 times the squared image
@@ -29,6 +52,8 @@ cv::Mat CentreSuperpixels(const cv::Mat& lab, const cv::Mat& disparity, double d
   cv::split(lab, channels);
   cv::Mat scaled_disparity;
   disparity.convertTo(scaled_disparity, CV_32F, params.colour_scale * std::sqrt(params.lambda_d) / disparity_range);
+  RequireBounded(lab, "colours (Lab)");
+  RequireBounded(scaled_disparity, "disparities");
   channels.push_back(scaled_disparity);
   cv::Mat features;
   cv::merge(channels, features);

@@ -40,6 +40,17 @@ cv::Mat CleanDisparity(const DisparityMap& disparity, double& range) {
   return clean;
 }
 
+// FillHoles spreads the labels that landed in a view; when none landed (every plane disparity non-finite, as fitted to
+// a map of 3e38, or so large that every ray leaves the view, as after a refocus by 1e9) the view kept ForwardWarp's -1
+// everywhere, and the refinement used -1 as a superpixel index: it wrote before the start of its per-view slice
+// table, corrupting the heap (issue 45). Such rays take the centre label at their own position (disparity 0), so
+// every ray holds a superpixel, as the refinement requires.
+void TakeCentreLabelsWhereNothingLanded(const cv::Mat& centre_labels, std::int32_t* view_labels) {
+  const std::int32_t* centre = centre_labels.ptr<std::int32_t>(0);
+  for (std::size_t i = 0; i < centre_labels.total(); ++i)
+    if (view_labels[i] < 0) view_labels[i] = centre[i];
+}
+
 // Algorithm 1, lines 3-14: every centre-view superpixel projected into every view along its plane, front-most
 // first, then the rays nothing projects to filled from the background side of their epipolar line.
 void ProjectSuperpixels(const cv::Mat& centre_labels, const std::vector<Plane>& planes, Labels& labels) {
@@ -67,9 +78,8 @@ void ProjectSuperpixels(const cv::Mat& centre_labels, const std::vector<Plane>& 
     std::vector<float> depth(shape.ViewPixels());
     ForwardWarp(centre_labels.ptr<std::int32_t>(0), plane_disparity.ptr<float>(0), shape.width, shape.height, du, dv,
                 out, depth.data());
-    const int reach =
-        static_cast<int>(std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv))))) + 2;
-    FillHoles(out, depth.data(), shape.width, shape.height, du, dv, std::min(reach, 512));
+    FillHoles(out, depth.data(), shape.width, shape.height, du, dv, FillReach(max_abs, du, dv));
+    TakeCentreLabelsWhereNothingLanded(centre_labels, out);
   }
 }
 

@@ -314,9 +314,7 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
       const int du = view.u - c.u, dv = view.v - c.v;
       std::vector<std::int32_t> hit(shape.ViewPixels());
       ForwardWarp(ones.data(), centre.data(), shape.width, shape.height, du, dv, hit.data(), map.data());
-      const int reach =
-          static_cast<int>(std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv))))) + 2;
-      FillHoles(hit.data(), map.data(), shape.width, shape.height, du, dv, std::min(reach, 512));
+      FillHoles(hit.data(), map.data(), shape.width, shape.height, du, dv, FillReach(max_abs, du, dv));
     }
     out[static_cast<std::size_t>(cam)] = std::move(map);
   }

@@ -75,6 +75,11 @@ void FillNearest(std::int32_t* labels, float* depth, int width, int height) {
 
 }  // namespace
 
+int FillReach(float max_abs, int du, int dv) {
+  const float reach = std::ceil(2.0f * max_abs * static_cast<float>(std::max(std::abs(du), std::abs(dv)))) + 2.0f;
+  return reach < 512.0f ? static_cast<int>(reach) : 512;  // NaN (0 x infinity) is not below 512 either
+}
+
 void FillHoles(std::int32_t* view_labels, float* view_depth, int width, int height, int du, int dv, int max_steps) {
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   const int step = std::max(std::abs(du), std::abs(dv));

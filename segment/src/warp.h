@@ -23,4 +23,8 @@ void ForwardWarp(const std::int32_t* centre_labels, const float* centre_disparit
 // breadth-first). Does nothing if no pixel is labelled.
 void FillHoles(std::int32_t* view_labels, float* view_depth, int width, int height, int du, int dv, int max_steps);
 
+// FillHoles' max_steps for the view at (du, dv) when the centre disparities reach +-max_abs: twice the largest shift
+// plus two, at most 512. Capped before the conversion to int, which a disparity of 1e38 or infinity would overflow.
+int FillReach(float max_abs, int du, int dv);
+
 }  // namespace lfsp::segment

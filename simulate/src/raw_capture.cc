@@ -188,11 +188,16 @@ double Modulation(const CameraModel& camera, const LensletLattice& lattice, doub
   return MicroLensProfile(std::hypot(along, across), disc_radius) * MainLensFalloff(camera, x, y);
 }
 
-RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const CaptureOptions& options) {
+void CheckCaptureOptions(const CaptureOptions& options) {
   if (options.supersampling < 1 || options.supersampling > 8) throw Error("capture: supersampling must be 1..8");
   if (options.lens_samples < 0 || options.lens_samples > 8) throw Error("capture: lens samples must be 0..8");
   if (!(options.exposure > 0.0 && options.exposure <= 4.0)) throw Error("capture: exposure must be in (0, 4]");
   if (options.hot_pixels < 0) throw Error("capture: hot pixel count must be >= 0");
+  if (!std::isfinite(options.disparity_scale)) throw Error("capture: disparity scale must be finite");
+}
+
+RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const CaptureOptions& options) {
+  CheckCaptureOptions(options);
   const SensorSetup s = Setup(camera, camera.capture_setting);
   RawCapture raw = EmptyCapture(camera, s);
   raw.exposure = options.exposure;

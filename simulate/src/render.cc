@@ -7,9 +7,7 @@
 #include "ray_tracer.h"
 
 namespace lfsp::simulate {
-namespace {
-
-void CheckOptions(const RenderOptions& o) {
+void CheckRenderOptions(const RenderOptions& o) {
   if (o.nu < 1 || o.nv < 1 || o.nu > 64 || o.nv > 64) throw Error("render: views must be 1..64 per axis");
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
     throw Error("render: view size must be 1..16384 pixels per axis");
@@ -17,10 +15,8 @@ void CheckOptions(const RenderOptions& o) {
   if (!std::isfinite(o.disparity_scale)) throw Error("render: disparity scale must be finite");
 }
 
-}  // namespace
-
 RenderedLightField RenderLightField(const Scene& scene, const RenderOptions& options) {
-  CheckOptions(options);
+  CheckRenderOptions(options);
   if (scene.objects.empty()) throw Error("render: scene '" + scene.name + "' has no objects");
   const LightFieldShape shape{options.nu, options.nv, options.width, options.height, 3};
   const ViewIndex centre = shape.Centre();

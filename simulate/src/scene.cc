@@ -7,6 +7,8 @@
 
 #include "json_fields.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/input_limits.h"
+#include "lfsp/core/untrusted_json.h"
 
 namespace lfsp::simulate {
 
@@ -283,14 +285,7 @@ Scene SceneFromJson(const nlohmann::json& json, const std::string& base_dir, con
 }
 
 Scene LoadScene(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) ThrowFileError(path.string(), "cannot open scene file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    ThrowFileError(path.string(), std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json json = ParseUntrustedJson(ReadWholeFile(path), path.string());
   return SceneFromJson(json, path.parent_path().string(), path.string());
 }
 

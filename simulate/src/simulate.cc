@@ -4,6 +4,7 @@
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/simulate/calibration_set.h"
+#include "lfsp/simulate/lenslet_camera.h"
 #include "lfsp/simulate/lytro_writer.h"
 #include "lfsp/simulate/render.h"
 
@@ -89,15 +90,61 @@ void WriteCalibrationSet(const SimulateOptions& options, const std::filesystem::
   result.summary["calibration_poses"] = poses;
 }
 
+// Every option checked before the output folder is made: `--disparity-scale inf` was refused only after the capture,
+// the white images and the geometry were written, `--size 100000x100000` after an empty folder was made.
+void CheckSimulateOptions(const SimulateOptions& options) {
+  if (options.compression_level < 0 || options.compression_level > 9)
+    throw Error("simulate: compression level must be 0..9");
+  if (options.calibration_poses < 0) throw Error("simulate: calibration poses must be >= 0");
+  if (options.ideal_only) {
+    CheckRenderOptions(IdealRenderOptions(options));
+  } else {
+    (void)CameraPreset(options.camera);  // an unknown name throws
+    CheckCaptureOptions(options.capture);
+  }
+}
+
+// What a failed run wrote is removed: the whole folder if the run made it, else the files it wrote and the
+// sub-folders they emptied.
+class PartialRun {
+ public:
+  PartialRun(const std::filesystem::path& out_dir, const SimulateResult& result) : out_dir_(out_dir), result_(result) {
+    std::error_code ec;
+    made_folder_ = !std::filesystem::exists(out_dir, ec);
+  }
+  ~PartialRun() {
+    if (finished_) return;
+    std::error_code ec;
+    if (made_folder_) {
+      std::filesystem::remove_all(out_dir_, ec);
+      return;
+    }
+    for (const std::filesystem::path& file : result_.files) {
+      std::filesystem::remove(out_dir_ / file, ec);
+      for (std::filesystem::path folder = file.parent_path(); !folder.empty(); folder = folder.parent_path())
+        std::filesystem::remove(out_dir_ / folder, ec);  // only if empty
+    }
+  }
+  void Finish() { finished_ = true; }
+
+ private:
+  std::filesystem::path out_dir_;
+  const SimulateResult& result_;
+  bool made_folder_ = false;
+  bool finished_ = false;
+};
+
 }  // namespace
 
 SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::path& out_dir) {
   const Stopwatch total;
+  CheckSimulateOptions(options);
   const Scene scene = SceneFromSpec(options.scene);
+  SimulateResult result;
+  PartialRun partial_run(out_dir, result);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) ThrowFileError(out_dir.string(), "cannot create output folder: " + ec.message());
-  SimulateResult result;
   nlohmann::json& summary = result.summary;
   summary["command"] = "simulate";
   summary["scene"] = scene.name;
@@ -171,6 +218,7 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
   for (const auto& f : result.files) files.push_back(f.generic_string());
   summary["files"] = files;
   summary["timings_s"]["total"] = total.Seconds();
+  partial_run.Finish();
   return result;
 }
 

@@ -157,7 +157,7 @@ TEST(GivenGrid, BadGridFilesExit2AndWriteNothing) {
       {"vert.json", "LensletGridModel.Orientation 'vert' is not supported"},
       {"no_spacing.json", "VSpacing is not a number"},
       {"other_sensor.json", "the grid is for a 7728x5368 sensor, the capture's is 1024x1024"},
-      {"garbage.json", "not a JSON object"},
+      {"garbage.json", "not valid JSON"},
       {"unrelated.json", "holds no lenslet grid"},
   };
   for (const auto& [name, message] : cases) {

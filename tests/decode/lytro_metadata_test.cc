@@ -201,7 +201,7 @@ TEST(LytroMetadataBadInput, WrongTypesAndValues) {
 
 TEST(LytroMetadataBadInput, DocumentsThatAreNotMetadata) {
   EXPECT_NE(ErrorOf([&] { ParseMetadataDocument("no json here", "a.TXT"); }).find("a.TXT"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ParseMetadataDocument("{\"a\": }", "b.TXT"); }).find("b.TXT: invalid JSON"),
+  EXPECT_NE(ErrorOf([&] { ParseMetadataDocument("{\"a\": }", "b.TXT"); }).find("b.TXT: not valid JSON"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ParseMetadataDocument("{\"hello\": 1}", "c.json"); }).find("not Lytro frame metadata"),
             std::string::npos);

@@ -6,13 +6,15 @@
 #include <nlohmann/json.hpp>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/untrusted_json.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const nlohmann::json json = nlohmann::json::parse(data, data + size, nullptr, false);
-  if (json.is_discarded()) return 0;
   try {
+    // Parsed as LoadScene parses a file: nesting depth checked before the document is built.
+    const nlohmann::json json =
+        lfsp::ParseUntrustedJson(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json");
     const lfsp::simulate::Scene scene = lfsp::simulate::SceneFromJson(json, ".", "fuzz.json");
     lfsp::simulate::RenderOptions options;
     options.nu = options.nv = 3;

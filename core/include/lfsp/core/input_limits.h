@@ -29,6 +29,14 @@ void SetMemoryLimit(std::optional<std::uint64_t> bytes);
 // breaks the rule above.
 void CheckDeclaredAllocation(const std::string& where, std::uint64_t declared_bytes, std::uint64_t file_bytes);
 
+// Throws lfsp::Error "<path>: no such file" or "<path>: not a regular file" unless `path` names a regular file
+// (after symbolic links). Every reader calls it before it opens a file: opening a FIFO for reading waits for a writer
+// forever, and a device never ends.
+void RequireRegularFile(const std::filesystem::path& path);
+
+// The whole of a regular file (RequireRegularFile first); lfsp::Error naming the file if it cannot be read.
+std::string ReadWholeFile(const std::filesystem::path& path);
+
 // The size of a file in bytes, 0 when it cannot be read (the reader reports that itself).
 std::uint64_t FileBytes(const std::filesystem::path& path);
 

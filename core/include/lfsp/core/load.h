@@ -5,6 +5,7 @@
 
 #include "lfsp/core/eslf.h"
 #include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/metadata.h"
 
 namespace lfsp {
 
@@ -18,8 +19,16 @@ LightFieldFormat DetectLightFieldFormat(const std::filesystem::path& path);  // 
 // NaN or infinite sample or ray weight is refused (lfsp::Error naming the file and the first such ray).
 // NaN or infinite samples have no meaning as light: every stage would turn them into silent garbage (a constant
 // depth map, all-NaN scores), so a light field holding one is refused: lfsp::Error naming `name` and the first such
-// ray. LoadLightField checks every input so; so does the Python module for arrays it is given.
+// ray. A negative ray weight is refused too: weights are how much of a ray the sensor saw, and every weighted mean
+// divides by their sum. Finite samples outside [0, 1] (-5, say) are kept: scene-linear decodes legitimately hold
+// values below 0 and above 1 after the colour matrix, and every stage computes with any finite value.
+// LoadLightField checks every input so; so does the Python module for arrays it is given.
 void RequireFiniteSamples(const LightField& light_field, const std::string& name);
+
+// A disparity range in the metadata (meta.disp_min / meta.disp_max) that is present but not two finite numbers with
+// min <= max is refused (lfsp::Error naming `name`): `"disp_min": "low"` was ignored without a word, and the range
+// estimated instead of the one the file declares. LoadLightField checks every input so.
+void RequireUsableDisparityRange(const Metadata& metadata, const std::string& name);
 
 struct LoadOptions {
   EslfOptions eslf;           // the angular size of an ESLF image that does not record it

@@ -56,6 +56,10 @@ constexpr int kCalibrationLensSamples = 3;
 // Deterministic for a seed (noise comes from a counter-based generator, independent of threads).
 RawCapture RenderRawCapture(const Scene& scene, const CameraModel& camera, const CaptureOptions& options);
 
+// Throws lfsp::Error unless the options can be rendered (exposure in (0, 4], a finite disparity scale, ...).
+// RenderRawCapture checks them; callers that write files check first.
+void CheckCaptureOptions(const CaptureOptions& options);
+
 // A white ("modulation") image at lens setting `setting_index` of camera.white_settings: a uniform white scene.
 RawCapture RenderWhiteImage(const CameraModel& camera, int setting_index, std::uint64_t seed);
 

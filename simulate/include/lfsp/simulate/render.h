@@ -27,6 +27,10 @@ struct RenderedLightField {
   DisparityMap disparity;                    // centre view (same as view_disparity[centre])
 };
 
+// Throws lfsp::Error unless the options can be rendered (views 1..64 per axis, view size 1..16384, supersampling
+// 1..16, a finite disparity scale). RenderLightField checks them; callers that write files check first.
+void CheckRenderOptions(const RenderOptions& options);
+
 // Renders every view by tracing, for each (anti-aliasing sub-)pixel, the ray of view (u, v) through the scene.
 // OpenMP-parallel; deterministic (no randomness).
 RenderedLightField RenderLightField(const Scene& scene, const RenderOptions& options);
