@@ -96,6 +96,8 @@ void CheckSimulateOptions(const SimulateOptions& options) {
   if (options.compression_level < 0 || options.compression_level > 9)
     throw Error("simulate: compression level must be 0..9");
   if (options.calibration_poses < 0) throw Error("simulate: calibration poses must be >= 0");
+  if (options.mosaic_jpeg_quality < 0 || options.mosaic_jpeg_quality > 100)
+    throw Error("simulate: mosaic JPEG quality must be 0 (none) .. 100");
   if (options.ideal_only) {
     CheckRenderOptions(IdealRenderOptions(options));
   } else {
