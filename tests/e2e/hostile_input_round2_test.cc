@@ -19,6 +19,7 @@
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/views_folder.h"
 #include "lfsp/decode/lfp_container.h"
+#include "refusal.h"
 #include "test_support.h"
 
 namespace lfsp {
@@ -32,15 +33,7 @@ using testing::SourceDir;
 using testing::TempDir;
 using testing::WriteBytes;
 
-constexpr long kSmallInputPeakKb = 1024L * 1024L;  // 1 GiB: every input here is a few MB at most
-
-void ExpectRefused(const CommandResult& result, const std::string& named) {
-  EXPECT_EQ(result.exit_status, 2) << result.err;
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
-  EXPECT_EQ(result.err.rfind("lfsp: error: ", 0), 0u) << result.err;
-  EXPECT_NE(result.err.find(named), std::string::npos) << "'" << result.err << "' does not name '" << named << "'";
-  EXPECT_LT(result.peak_rss_kb, kSmallInputPeakKb) << result.err;
-}
+using testing::ExpectRefused;
 
 // Everything in `folder` (recursively) whose name is not in `inputs`: what a refused command left behind.
 std::vector<std::string> LeftBehind(const fs::path& folder, const std::vector<std::string>& inputs) {

@@ -18,6 +18,7 @@
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/views_folder.h"
+#include "refusal.h"
 #include "test_support.h"
 
 namespace lfsp {
@@ -29,16 +30,8 @@ using testing::RunLfsp;
 using testing::TempDir;
 using testing::WriteBytes;
 
-constexpr long kSmallInputPeakKb = 1024L * 1024L;  // 1 GiB for inputs under 1 MB (the bound)
-
-// Exit 2, exactly one line on stderr that starts with "lfsp: error: " and names `named`, memory bounded.
-void ExpectRefused(const CommandResult& result, const std::string& named) {
-  EXPECT_EQ(result.exit_status, 2) << result.err;
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
-  EXPECT_EQ(result.err.rfind("lfsp: error: ", 0), 0u) << result.err;
-  EXPECT_NE(result.err.find(named), std::string::npos) << "'" << result.err << "' does not name '" << named << "'";
-  EXPECT_LT(result.peak_rss_kb, kSmallInputPeakKb) << result.err;
-}
+using testing::ExpectRefused;
+using testing::kSmallInputPeakKb;
 
 LightField SmallLightField(int n, int width, int height) {
   LightField light_field({n, n, width, height, 3});
