@@ -41,7 +41,7 @@ struct PlainLevels {
 // The levels of a plain raw image when none are given.
 //   16-bit, camera given, every code under the camera's white level: a sensor dump, read with the camera's levels.
 //   Camera given otherwise: the file is the camera's raw scaled to the file's range (an 8-bit export, or a 16-bit
-//     one scaled up), so the camera's black level scales with it (F01: 168 of 4095 is 10.5 of 255). Leaving it at 0
+//     one scaled up), so the camera's black level scales with it (F01: 168 of 4095 is 10.46 of 255). Leaving it at 0
 //     keeps a pedestal that the white balance then tints (blue on an F01: its blue gain is the largest).
 //   No camera: the file's full code range.
 PlainLevels DefaultPlainLevels(int bit_depth, std::uint16_t largest_stored, bool has_camera, const RawFormat& camera) {
