@@ -21,7 +21,12 @@ from typing import Any, NamedTuple, Optional
 
 import numpy
 
-from . import _lfsp
+# Passive OpenMP waiting unless the user chose otherwise, as the `lfsp` executable does
+# (core/startup/omp_wait_policy.cc says why). libgomp reads it once, when the extension below first loads it.
+if "OMP_WAIT_POLICY" not in os.environ and "GOMP_SPINCOUNT" not in os.environ:
+    os.environ["OMP_WAIT_POLICY"] = "passive"
+
+from . import _lfsp  # noqa: E402
 from ._lfsp import (
     Error,
     LightField,
