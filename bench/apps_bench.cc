@@ -1,12 +1,9 @@
-// Whole commands, timed end to end through the `lfsp` executable: the pipeline on the bundled sample and the
+// Whole commands, timed end to end through the `lfsp` executable (bench_inputs.cc runs it): the pipeline on the
 // noise study (issue 8 targets).
 
-#include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <stdexcept>
 
 #include "bench_case.h"
 
@@ -14,11 +11,6 @@ namespace lfsp::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-void RunLfsp(const std::string& arguments) {
-  const std::string command = std::string(LFSP_BINARY_PATH) + " -q " + arguments + " > /dev/null";
-  if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
-}
 
 nlohmann::json ReadJson(const fs::path& path) {
   std::ifstream file(path);
@@ -53,23 +45,9 @@ LFSP_BENCH_CASE {
   return c;
 }
 
-// A scene name as part of a file name: hyphens become underscores.
-std::string Underscored(std::string name) {
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-}
-
 // The full-size chain (issue 12): `lfsp pipeline` on a simulated full-size capture of a built-in scene (two-horses
 // for the time and memory targets, three more for quality), and beside it the same chain on that capture's ideal
-// light field. The captures are simulated once, outside the measured process.
-fs::path FullSizeCapture(const std::string& camera, const std::string& scene) {
-  const fs::path folder = fs::temp_directory_path() / ("lfsp_bench_" + Underscored(scene) + "_" + camera);
-  const fs::path capture = folder / (camera == "illum" ? "capture.LFR" : "capture.lfp");
-  if (!fs::exists(capture) || !fs::exists(folder / "ground_truth" / "decoded.h5"))
-    RunLfsp("simulate --camera " + camera + " --scene " + scene + " --out " + folder.string());
-  return capture;
-}
-
+// light field. The captures are simulated once (FullSizeCapture), outside the measured process.
 std::string PipelineFigures(const fs::path& out) {
   const nlohmann::json summary = ReadJson(out / "summary.json");
   const nlohmann::json& metrics = summary["metrics"];

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ struct BenchCase {
   // that scoring a result (which can cost as much as making it) does not count in the stage's time.
   std::function<std::string()> score;
   std::string baseline;
+  // The ratio is printed against baseline_scale x the baseline's median: 2 for two jobs against one run twice.
+  double baseline_scale = 1.0;
   int repetitions = 5;
   bool needs_shared_data = false;
 };
@@ -34,6 +37,14 @@ std::vector<BenchCase> AllBenchCases();
 
 // ../shared/data, or "" if absent (cases that need it are then listed as skipped).
 std::string SharedDataDir();
+
+// Runs `lfsp -q <arguments>` (the executable of this build) with `environment` ("NAME=value ...", shell syntax)
+// before it, its output discarded; throws if it fails.
+void RunLfsp(const std::string& arguments, const std::string& environment = "");
+
+// The full-size simulated capture (.LFR for "illum", .lfp for "f01") of a built-in scene, with its white images and
+// ground truth, made once in the temporary folder and reused by every case and later runs.
+std::filesystem::path FullSizeCapture(const std::string& camera, const std::string& scene);
 
 }  // namespace lfsp::bench
 

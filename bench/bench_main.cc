@@ -160,8 +160,11 @@ int main(int argc, char** argv) {
       medians[bench_case.name] = result.Median();
       const auto baseline = medians.find(bench_case.baseline);
       if (!bench_case.baseline.empty() && baseline != medians.end() && baseline->second > 0.0) {
-        char text[128];
-        std::snprintf(text, sizeof text, "x%.2f of %s", result.Median() / baseline->second,
+        const double scale = bench_case.baseline_scale;
+        char scaled[32] = "";
+        if (scale != 1.0) std::snprintf(scaled, sizeof scaled, "%g x ", scale);
+        char text[160];
+        std::snprintf(text, sizeof text, "x%.2f of %s%s", result.Median() / (scale * baseline->second), scaled,
                       bench_case.baseline.c_str());
         ratio = text;
       }

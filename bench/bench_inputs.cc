@@ -1,0 +1,28 @@
+// What several bench files share: running the `lfsp` executable, and the full-size simulated captures it makes.
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "bench_case.h"
+
+namespace lfsp::bench {
+
+namespace fs = std::filesystem;
+
+void RunLfsp(const std::string& arguments, const std::string& environment) {
+  const std::string command = environment + std::string(LFSP_BINARY_PATH) + " -q " + arguments + " > /dev/null";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
+}
+
+fs::path FullSizeCapture(const std::string& camera, const std::string& scene) {
+  std::string folder_scene = scene;
+  std::replace(folder_scene.begin(), folder_scene.end(), '-', '_');  // a scene name as part of a file name
+  const fs::path folder = fs::temp_directory_path() / ("lfsp_bench_" + folder_scene + "_" + camera);
+  const fs::path capture = folder / (camera == "illum" ? "capture.LFR" : "capture.lfp");
+  if (!fs::exists(capture) || !fs::exists(folder / "ground_truth" / "decoded.h5"))
+    RunLfsp("simulate --camera " + camera + " --scene " + scene + " --out " + folder.string());
+  return capture;
+}
+
+}  // namespace lfsp::bench
