@@ -1,5 +1,5 @@
 // Whole commands, timed end to end through the `lfsp` executable (bench_inputs.cc runs it): the pipeline on the
-// noise study (issue 8 targets).
+// bundled sample and the noise study (issue 8 targets).
 
 #include <filesystem>
 #include <fstream>
