@@ -14,6 +14,7 @@
 #include "lfsp/core/views_folder.h"
 #include "lfsp/depth/depth_estimator.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/depth/region_metrics.h"
 #include "lfsp/simulate/render.h"
 
 namespace lfsp::bench {
@@ -113,6 +114,65 @@ LFSP_BENCH_CASE {
                     e.near_discontinuities.mse_x100, seconds);
       quality += text;
     }
+    return quality;
+  };
+  return c;
+}
+
+namespace {
+
+// One scene's figures for issue 43: the benchmark's region metrics and the confidence's sparsification.
+std::string OcclusionEdgeFigures(const std::string& name, const depth::DepthResult& result, const DisparityMap& gt,
+                                 double seconds) {
+  const depth::MetricOptions options;
+  const depth::DepthEvaluation e = depth::EvaluateDisparity(
+      result.disparity, gt, options, depth::DeriveEvaluationMasks(gt, options), &result.confidence);
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%s: BadPix0.07 %.2f %%, MSEx100 %.2f; disc. BadPix0.07 %.2f %%, MSEx100 %.2f, fattening %.0f %%; "
+                "bumpiness planes %.2f, smooth %.2f; sparsification area %.3f (oracle %.3f); %.1f s; ",
+                name.c_str(), e.all.badpix_007, e.all.mse_x100, e.near_discontinuities.badpix_007,
+                e.near_discontinuities.mse_x100, e.fattening_near_discontinuities, e.bumpiness_planes,
+                e.bumpiness_smooth_surfaces, e.sparsification->area, e.sparsification->oracle_area, seconds);
+  return text;
+}
+
+std::vector<std::pair<std::string, simulate::RenderedLightField>>& EdgeScenes() {
+  static std::vector<std::pair<std::string, simulate::RenderedLightField>> scenes;
+  return scenes;
+}
+
+}  // namespace
+
+// Depth at occlusion edges (issue 43): the scenes that show foreground fattening (bars) and sub-pixel precision on
+// curved surfaces (sculpture), the other hard scenes and antinous, each with the benchmark's region metrics, the
+// fattening index on the discontinuity mask and the confidence's sparsification (lower areas are better).
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "depth";
+  c.name = "occlusion-edges";
+  c.input = "bars, sculpture, occluders, comb, layers 9x9x512x512 (ideal) and antinous";
+  c.target = "disc. BadPix halved from 2026-12-06, fattening <= 60 %, each <= 0.9 x SPO";
+  c.needs_shared_data = true;
+  c.repetitions = 1;
+  c.prepare = [] {
+    for (const char* name : {"bars", "sculpture", "occluders", "comb", "layers"}) {
+      simulate::RenderOptions options;
+      options.width = options.height = 512;
+      EdgeScenes().emplace_back(name, simulate::RenderLightField(simulate::BuiltinScene(name), options));
+    }
+    Load();
+  };
+  c.run = [] {
+    std::string quality;
+    for (auto& [name, rendered] : EdgeScenes()) {
+      const Stopwatch stopwatch;
+      const depth::DepthResult result = depth::EstimateDepth(rendered.light_field, {});
+      quality += OcclusionEdgeFigures(name, result, rendered.disparity, stopwatch.Seconds());
+    }
+    const Stopwatch stopwatch;
+    const depth::DepthResult result = depth::EstimateDepth(Loaded().light_field, {});
+    quality += OcclusionEdgeFigures("antinous", result, Loaded().gt, stopwatch.Seconds());
     return quality;
   };
   return c;

@@ -5,6 +5,7 @@
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/depth/depth_io.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/depth/region_metrics.h"
 #include "stages/summary.h"
 
 namespace lfsp::stages {
@@ -29,7 +30,10 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   for (const auto& [key, value] : choices.items()) summary[key] = value;
   const std::optional<DisparityMap>& truth = bundle.disparity;
   if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
-    const depth::DepthEvaluation evaluation = depth::EvaluateDisparity(estimate.disparity, *truth);
+    const depth::MetricOptions metric_options;
+    const depth::DepthEvaluation evaluation =
+        depth::EvaluateDisparity(estimate.disparity, *truth, metric_options,
+                                 depth::DeriveEvaluationMasks(*truth, metric_options), &estimate.confidence);
     summary["metrics_vs_input_ground_truth"] = depth::ToJson(evaluation);
     spdlog::info("vs ground truth: MSE x100 {:.2f}, BadPix 0.07 {:.2f} %", evaluation.all.mse_x100,
                  evaluation.all.badpix_007);

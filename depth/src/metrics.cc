@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/depth/region_metrics.h"
 
 namespace lfsp::depth {
 namespace {
@@ -110,12 +111,28 @@ DepthMetrics ComputeMetrics(const DisparityMap& algo, const DisparityMap& gt, co
 
 DepthEvaluation EvaluateDisparity(const DisparityMap& algo, const DisparityMap& gt, const MetricOptions& options) {
   CheckSameSize(algo, gt);
+  return EvaluateDisparity(algo, gt, options, DeriveEvaluationMasks(gt, options));
+}
+
+DepthEvaluation EvaluateDisparity(const DisparityMap& algo, const DisparityMap& gt, const MetricOptions& options,
+                                  const EvaluationMasks& masks, const DisparityMap* confidence) {
+  CheckSameSize(algo, gt);
   DepthEvaluation evaluation;
   evaluation.options = options;
   const cv::Mat everything(gt.height(), gt.width(), CV_8U, cv::Scalar(255));
   evaluation.all = ComputeMetrics(algo, gt, everything, options.boundary);
-  const cv::Mat near = DiscontinuityRegion(gt, options.discontinuity_jump, options.discontinuity_radius);
-  evaluation.near_discontinuities = ComputeMetrics(algo, gt, near, options.boundary);
+  evaluation.near_discontinuities = ComputeMetrics(algo, gt, masks.discontinuities, options.boundary);
+  evaluation.fattening_all = FatteningIndex(algo, gt, everything, options.boundary);
+  evaluation.fattening_near_discontinuities = FatteningIndex(algo, gt, masks.discontinuities, options.boundary);
+  evaluation.bumpiness_planes = Bumpiness(algo, gt, masks.planes, options.boundary);
+  evaluation.bumpiness_smooth_surfaces = Bumpiness(algo, gt, masks.smooth_surfaces, options.boundary);
+  const cv::Mat inside = BoundaryMask(gt.width(), gt.height(), options.boundary);
+  evaluation.plane_pixels = static_cast<std::size_t>(cv::countNonZero(masks.planes & inside));
+  evaluation.smooth_surface_pixels = static_cast<std::size_t>(cv::countNonZero(masks.smooth_surfaces & inside));
+  evaluation.discontinuities_source = masks.discontinuities_source;
+  evaluation.planes_source = masks.planes_source;
+  evaluation.smooth_surfaces_source = masks.smooth_surfaces_source;
+  if (confidence != nullptr) evaluation.sparsification = SparsificationOf(algo, gt, *confidence, options.boundary);
   return evaluation;
 }
 
@@ -131,12 +148,34 @@ nlohmann::json ToJson(const DepthMetrics& metrics) {
 }
 
 nlohmann::json ToJson(const DepthEvaluation& evaluation) {
-  return {{"all", ToJson(evaluation.all)},
-          {"near_discontinuities", ToJson(evaluation.near_discontinuities)},
-          {"definition",
-           {{"boundary_px", evaluation.options.boundary},
-            {"discontinuity_jump_px", evaluation.options.discontinuity_jump},
-            {"discontinuity_radius_px", evaluation.options.discontinuity_radius}}}};
+  auto number = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); };
+  nlohmann::json json = {{"all", ToJson(evaluation.all)},
+                         {"near_discontinuities", ToJson(evaluation.near_discontinuities)},
+                         {"fattening_index",
+                          {{"all", number(evaluation.fattening_all)},
+                           {"near_discontinuities", number(evaluation.fattening_near_discontinuities)}}},
+                         {"bumpiness",
+                          {{"planes", number(evaluation.bumpiness_planes)},
+                           {"smooth_surfaces", number(evaluation.bumpiness_smooth_surfaces)},
+                           {"plane_pixels", evaluation.plane_pixels},
+                           {"smooth_surface_pixels", evaluation.smooth_surface_pixels}}},
+                         {"definition",
+                          {{"boundary_px", evaluation.options.boundary},
+                           {"discontinuity_jump_px", evaluation.options.discontinuity_jump},
+                           {"discontinuity_radius_px", evaluation.options.discontinuity_radius},
+                           {"masks",
+                            {{"discontinuities", evaluation.discontinuities_source},
+                             {"planes", evaluation.planes_source},
+                             {"smooth_surfaces", evaluation.smooth_surfaces_source}}}}}};
+  if (evaluation.sparsification) {
+    const Sparsification& s = *evaluation.sparsification;
+    json["sparsification"] = {{"area_mse_x100", number(s.area)},
+                              {"oracle_area_mse_x100", number(s.oracle_area)},
+                              {"area_between", number(s.area_between)},
+                              {"curve_mse_x100", s.curve},
+                              {"oracle_mse_x100", s.oracle}};
+  }
+  return json;
 }
 
 }  // namespace lfsp::depth

@@ -57,7 +57,14 @@ def evaluate_segmentation(
     gt_labels: Optional[npt.ArrayLike] = ...,
     **options: Any,
 ) -> dict: ...
-def evaluate_depth(disparity: npt.ArrayLike, gt_disparity: npt.ArrayLike, **options: Any) -> dict: ...
+def evaluate_depth(
+    disparity: npt.ArrayLike,
+    gt_disparity: npt.ArrayLike,
+    *,
+    confidence: Optional[npt.ArrayLike] = ...,
+    masks: str = ...,
+    **options: Any,
+) -> dict: ...
 def recolor(
     light_field: LightField,
     *,

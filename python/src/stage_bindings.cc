@@ -21,6 +21,7 @@
 #include "lfsp/core/shear.h"
 #include "lfsp/core/view_crop.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/depth/region_metrics.h"
 #include "lfsp/edit/recolor.h"
 #include "lfsp/edit/refocus.h"
 #include "lfsp/edit/selection.h"
@@ -296,17 +297,28 @@ void BindEvaluate(py::module_& m) {
   };
   m.def(
       "evaluate_depth",
-      [metric_options](py::object disparity, py::object gt_disparity, const py::kwargs& keywords) {
+      [metric_options](py::object disparity, py::object gt_disparity, py::object confidence, const std::string& masks,
+                       const py::kwargs& keywords) {
         depth::MetricOptions metrics;
         ParseKeywords("evaluate_depth", keywords, metric_options(metrics));
         const DisparityMap algo = DisparityFromArray(disparity, "disparity");
         const DisparityMap gt = DisparityFromArray(gt_disparity, "gt_disparity");
-        return JsonToPython(depth::ToJson(depth::EvaluateDisparity(algo, gt, metrics)));
+        std::optional<DisparityMap> confidence_map;
+        if (!confidence.is_none()) confidence_map = DisparityFromArray(confidence, "confidence");
+        if (!masks.empty() && !std::filesystem::is_directory(masks)) throw Error(masks + ": masks is not a folder");
+        const depth::EvaluationMasks regions =
+            masks.empty() ? depth::DeriveEvaluationMasks(gt, metrics) : depth::ReadEvaluationMasks(masks, gt, metrics);
+        return JsonToPython(depth::ToJson(
+            depth::EvaluateDisparity(algo, gt, metrics, regions, confidence_map ? &*confidence_map : nullptr)));
       },
-      py::arg("disparity"), py::arg("gt_disparity"),
-      Doc("evaluate_depth(disparity, gt_disparity, **options) -> dict\n\nHCI 4D light-field benchmark metrics of a "
-          "centre-view disparity, as `lfsp evaluate depth` prints them: MSE x100, BadPix 0.07 / 0.03 / 0.01 (%), "
-          "Q25, over all pixels and near ground-truth discontinuities.",
+      py::arg("disparity"), py::arg("gt_disparity"), py::kw_only(), py::arg("confidence") = py::none(),
+      py::arg("masks") = "",
+      Doc("evaluate_depth(disparity, gt_disparity, *, confidence=None, masks='', **options) -> dict\n\nHCI 4D "
+          "light-field benchmark metrics of a centre-view disparity, as `lfsp evaluate depth` prints them: MSE x100, "
+          "BadPix 0.07 / 0.03 / 0.01 (%), Q25, over all pixels and near ground-truth discontinuities; the fattening "
+          "index; bumpiness on planes and smooth surfaces; with `confidence` (an (H, W) array, larger = more "
+          "trusted), its sparsification curve. `masks`: a folder with the benchmark's mask_discontinuities.png, "
+          "mask_planes.png, mask_smooth_surfaces.png (default: regions derived from the ground truth).",
           metric_options(metric_defaults))
           .c_str());
 }

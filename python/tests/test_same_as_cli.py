@@ -84,10 +84,13 @@ def test_evaluate_depth_gives_the_same_numbers(ideal, cli_run, tmp_path):
     folder, _ = cli_run
     lfsp.write_disparity(ideal.disparity, tmp_path / "gt.pfm")
     cli = json.loads(run_cli("evaluate", "depth", folder / "d.pfm", "--gt", tmp_path / "gt.pfm").stdout)
-    ours = lfsp.evaluate_depth(lfsp.read_disparity(folder / "d.pfm"), ideal.disparity)
-    for key in ("algo", "gt"):
+    # The command scores the confidence `lfsp depth` wrote beside the map (d_confidence.pfm).
+    confidence = lfsp.read_disparity(folder / "d_confidence.pfm")
+    ours = lfsp.evaluate_depth(lfsp.read_disparity(folder / "d.pfm"), ideal.disparity, confidence=confidence)
+    for key in ("algo", "gt", "confidence"):
         cli.pop(key)
     assert ours == cli
+    assert 0.0 <= ours["sparsification"]["oracle_area_mse_x100"] <= ours["sparsification"]["area_mse_x100"]
     assert 0.0 < ours["all"]["mse_x100"] < 5.0  # a real estimate, not an empty score
 
 

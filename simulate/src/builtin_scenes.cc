@@ -172,6 +172,58 @@ json LayersScene() {
           {"objects", objects}};
 }
 
+json BarsScene() {
+  // After the benchmark's scenes of many thin bars (issue 43): three backgrounds of different textures at different
+  // depths, one above the other, crossed by vertical bars of 1-12 px at three depths in front, and by three
+  // horizontal stripes of 2, 5 and 10 px.
+  // The walls reach past the frame so that the side views see them too; the background only shows past their ends.
+  json objects = {Background(-1.3f, Noise({0.5, 0.5, 0.5}, {0.7, 0.7, 0.7}, 0.02f, 80)),
+                  Plane("wall-noise", 1, Rect(-0.05f, -0.05f, 1.05f, 0.34f), -1.0f,
+                        Noise({0.3, 0.35, 0.3}, {0.85, 0.8, 0.7}, 0.01f, 81)),
+                  Plane("wall-checker", 2, Rect(-0.05f, 0.34f, 1.05f, 0.67f), -0.6f,
+                        Checker({0.9, 0.88, 0.8}, {0.3, 0.32, 0.4}, 0.02f, 12.0f)),
+                  Plane("wall-stripes", 3, Rect(-0.05f, 0.67f, 1.05f, 1.05f), -0.2f,
+                        Stripes({0.7, 0.5, 0.3}, {0.95, 0.85, 0.6}, 0.015f, 70.0f))};
+  const float widths[] = {1, 2, 3, 4, 6, 8, 12};
+  const float depths[] = {0.4f, 0.9f, 1.5f};
+  const json bar_texture = Noise({0.5, 0.1, 0.08}, {0.85, 0.3, 0.2}, 0.008f, 82);
+  float x = 0.06f;
+  for (int i = 0; i < 7; ++i) {
+    const float width = widths[i] * kPixel512;
+    objects.push_back(Plane("bar-" + std::to_string(static_cast<int>(widths[i])) + "px", 4 + i,
+                            Rect(x, 0.04f, x + width, 0.96f), depths[i % 3], bar_texture));
+    x += width + 0.12f;
+  }
+  const float stripe_widths[] = {2, 5, 10};
+  const float stripe_y[] = {0.2f, 0.5f, 0.82f};
+  for (int i = 0; i < 3; ++i)
+    objects.push_back(Plane("stripe-" + std::to_string(static_cast<int>(stripe_widths[i])) + "px", 11 + i,
+                            Rect(0.03f, stripe_y[i], 0.97f, stripe_y[i] + stripe_widths[i] * kPixel512), 1.1f,
+                            Noise({0.1, 0.25, 0.5}, {0.35, 0.55, 0.9}, 0.008f, 83 + i)));
+  return {{"name", "bars"},
+          {"description",
+           "vertical bars of 1-12 px at three depths and horizontal stripes of 2-10 px in front of three "
+           "differently textured walls (laid out for 512 x 512 views)"},
+          {"objects", objects}};
+}
+
+json SculptureScene() {
+  // After the benchmark's sculpture scenes (issue 43): a smooth, finely textured curved object in front of a
+  // textured wall, with a smaller one beside it: smooth surfaces, where sub-pixel precision shows, and their rims.
+  const json skin = Noise({0.55, 0.5, 0.45}, {0.8, 0.76, 0.7}, 0.006f, 91);
+  json head = {{"name", "sculpture"}, {"label", 1},       {"type", "ellipsoid"}, {"centre", {0.45, 0.48}},
+               {"radius", 0.3},       {"disparity", 0.2}, {"bulge", 0.9},        {"texture", skin}};
+  json bust = {{"name", "pebble"},    {"label", 2},
+               {"type", "ellipsoid"}, {"centre", {0.82, 0.75}},
+               {"radius", 0.12},      {"disparity", 0.5},
+               {"bulge", 0.4},        {"texture", Noise({0.35, 0.4, 0.45}, {0.7, 0.75, 0.8}, 0.006f, 92)}};
+  return {{"name", "sculpture"},
+          {"description",
+           "a smooth, finely textured ellipsoid and a smaller one in front of a textured wall "
+           "(laid out for 512 x 512 views)"},
+          {"objects", {Background(-0.8f, Noise({0.4, 0.3, 0.25}, {0.8, 0.65, 0.5}, 0.01f, 93)), head, bust}}};
+}
+
 json CheckerboardScene() {
   return {
       {"name", "checkerboard"},
@@ -184,7 +236,8 @@ json CheckerboardScene() {
 }  // namespace
 
 std::vector<std::string> BuiltinSceneNames() {
-  return {"planes", "occluders", "two-horses", "spheres", "specular", "checkerboard", "comb", "layers"};
+  return {"planes",       "occluders", "two-horses", "spheres", "specular",
+          "checkerboard", "comb",      "layers",     "bars",    "sculpture"};
 }
 
 Scene BuiltinScene(const std::string& name) {
@@ -205,6 +258,10 @@ Scene BuiltinScene(const std::string& name) {
     json_scene = CombScene();
   else if (name == "layers")
     json_scene = LayersScene();
+  else if (name == "bars")
+    json_scene = BarsScene();
+  else if (name == "sculpture")
+    json_scene = SculptureScene();
   else {
     std::string list;
     for (const auto& n : BuiltinSceneNames()) list += (list.empty() ? "" : ", ") + n;

@@ -3,6 +3,9 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "lfsp/core/light_field.h"
 
@@ -30,10 +33,32 @@ struct MetricOptions {
   double discontinuity_radius = 5.0;  // pixels within this Euclidean distance of such an edge are "near"
 };
 
-// Metrics over all evaluated pixels and over the pixels near ground-truth depth discontinuities.
+// The sparsification curve of a confidence map (Ilg et al., ECCV 2018): the MSE x100 of the most confident p % of
+// the evaluated pixels, for p = 1 ... 100, beside the same curve for the oracle order (smallest error first). The
+// areas are the curves' means; the area between them (AUSE) is 0 for a confidence that ranks errors perfectly.
+struct Sparsification {
+  std::vector<double> curve;   // 100 values, p = 1 ... 100 %
+  std::vector<double> oracle;  // 100 values
+  double area = 0.0;
+  double oracle_area = 0.0;
+  double area_between = 0.0;  // area - oracle_area (AUSE)
+};
+
+// Metrics over all evaluated pixels and over the benchmark's regions (lfsp/depth/region_metrics.h): near
+// ground-truth depth discontinuities, on planes and on smooth surfaces.
 struct DepthEvaluation {
   DepthMetrics all;
-  DepthMetrics near_discontinuities;
+  DepthMetrics near_discontinuities;  // on the discontinuity mask
+  // Of the pixels bad at 0.07, the percentage that read nearer than the truth (FatteningIndex).
+  double fattening_all = 0.0;
+  double fattening_near_discontinuities = 0.0;
+  // The benchmark's bumpiness (Bumpiness), 100 x mean clipped Hessian norm of the error.
+  double bumpiness_planes = 0.0;
+  double bumpiness_smooth_surfaces = 0.0;
+  std::size_t plane_pixels = 0;
+  std::size_t smooth_surface_pixels = 0;
+  std::string discontinuities_source, planes_source, smooth_surfaces_source;
+  std::optional<Sparsification> sparsification;  // when a confidence map was given
   MetricOptions options;
 };
 
@@ -50,7 +75,9 @@ cv::Mat BoundaryMask(int width, int height, int boundary);
 // Throws lfsp::Error if the sizes differ.
 DepthMetrics ComputeMetrics(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region, int boundary = 15);
 
-// Both metric sets; throws lfsp::Error naming the sizes when algo and gt differ in size or are empty.
+// Every figure, with the regions derived from the ground truth (DeriveEvaluationMasks); throws lfsp::Error naming
+// the sizes when algo and gt differ in size or are empty. region_metrics.h has the version with a scene's masks and a
+// confidence map.
 DepthEvaluation EvaluateDisparity(const DisparityMap& algo, const DisparityMap& gt, const MetricOptions& options = {});
 
 nlohmann::json ToJson(const DepthMetrics& metrics);

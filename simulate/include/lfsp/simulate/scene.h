@@ -114,6 +114,9 @@ nlohmann::json SceneToJson(const Scene& scene);
 //   "spheres"      ellipsoids ("spheres") and discs in front of a slanted floor
 //   "specular"     planes with view-dependent highlights
 //   "checkerboard" one fronto-parallel checkerboard (for calibration-style tests)
+//   "comb", "layers" thin teeth, rails and pickets over fine textures (laid out for 512 x 512 views)
+//   "bars"         1-12 px bars and stripes at several depths over three textured walls (512 x 512)
+//   "sculpture"    smooth finely textured ellipsoids in front of a textured wall (512 x 512)
 Scene BuiltinScene(const std::string& name);
 std::vector<std::string> BuiltinSceneNames();
 
