@@ -149,6 +149,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     WeightedMedianRefine(estimate.disparity, centre, options.median);
     lap("weighted_median");
   }
+  LowerConfidenceNearDepthEdges(estimate.confidence, estimate.disparity);
   result.disparity = std::move(estimate.disparity);
   result.confidence = std::move(estimate.confidence);
   return result;
