@@ -14,8 +14,10 @@ tmp=$(mktemp -d)
 trap 'slurm_cluster_stop "$tmp/cluster"; rm -rf "$tmp"' EXIT
 
 for ((i = 1; i <= n / 2; i++)); do
-  "$lfsp" -q simulate --camera mini-f01 --scene occluders --seed "$i" --storage uint8 --out "$tmp/captures/f01-$i" &
-  "$lfsp" -q simulate --camera mini-illum --scene planes --seed "$i" --storage uint8 --out "$tmp/captures/illum-$i"
+  "$lfsp" -q simulate --camera mini-f01 --scene occluders --seed "$i" --storage uint8 --out "$tmp/captures/f01-$i" \
+    > /dev/null &
+  "$lfsp" -q simulate --camera mini-illum --scene planes --seed "$i" --storage uint8 --out "$tmp/captures/illum-$i" \
+    > /dev/null
   wait
 done
 rm -rf "$tmp"/captures/*/ground_truth
