@@ -29,25 +29,35 @@ def image(folder, name, title, shape):
 
 
 def figures(folder, capture):
-    """The key figures of one capture, shared by its page and the index (index.py imports this)."""
-    decoded = load(folder, "decoded.summary.json")
+    """The key figures of one capture, shared by its page and the index (index.py imports this). An input that was
+    already a light field (views folder, .h5, .mat) has no decode: its size comes from segment's summary."""
+    decoded = load(folder, "decoded.summary.json") if (folder / "decoded.summary.json").exists() else None
     depth = load(folder, "disparity.summary.json")
     segmentation = load(folder, "segmentation.summary.json")
     metrics = load(folder, "metrics.json")["lfsp"]
-    light_field = decoded["light_field"]
-    return {
+    if decoded:
+        light_field = decoded["light_field"]
+        size = f'{light_field["nu"]}x{light_field["nv"]} views of {light_field["width"]}x{light_field["height"]}'
+    else:
+        size = str(segmentation.get("shape", ""))
+    row = {
         "capture": capture,
-        "light field": f'{light_field["nu"]}x{light_field["nv"]} views of {light_field["width"]}x{light_field["height"]}',
-        "white image": decoded["white_image"].get("name", ""),
+        "light field": size,
+        "white image": decoded["white_image"].get("name", "") if decoded else "(not decoded)",
         "views processed": f'{depth["views"]["n"]}x{depth["views"]["n"]}',
         "disparity range": f'{depth["range"]["min"]:.2f} .. {depth["range"]["max"]:.2f} ({depth["range"].get("source", "")})',
         "superpixels": metrics["labels"],
         "effective label ratio": round(metrics["elr"], 3),
         "compactness": round(metrics["compactness"], 3),
-        "decode s": round(decoded["seconds"]["total"], 2),
-        "depth s": round(sum(v for v in depth.get("timings_seconds", {}).values() if isinstance(v, (int, float))), 2),
+        "decode s": round(decoded["seconds"]["total"], 2) if decoded else "",
+        "depth s": round(depth.get("timings_seconds", {}).get("stage", 0.0), 2),
         "segment s": round(segmentation["timings_seconds"].get("command", 0.0), 2),
     }
+    if (folder / "depth_metrics.json").exists():  # an HCI scene with ground truth
+        scores = load(folder, "depth_metrics.json")["all"]
+        row["HCI BadPix 0.07 %"] = round(scores["badpix_0.07"], 2)
+        row["HCI MSE x100"] = round(scores["mse_x100"], 3)
+    return row
 
 
 PAGE = """<!doctype html><html><head><meta charset="utf-8"><title>{title}</title><style>
