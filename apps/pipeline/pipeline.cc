@@ -206,6 +206,7 @@ void WriteReport(const ReportInputs& inputs, const PipelineOptions& options, con
   report::Report report = BuildReport(inputs, options);
   report.metrics = metrics;
   report.timings = timings;  // stages so far; the report stage itself is in summary.json
+  report.raw_json = "summary.json";
   std::ofstream file(path);
   file << report::RenderHtml(report);
   if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
