@@ -1,4 +1,4 @@
-# Thin wrapper: the two commands users need (`make demo`, `make test`) plus `make bench`.
+# Thin wrapper: the two commands users need (`make demo`, `make test`) plus `make bench` and `make package`.
 # Each installs what it needs (tools/bootstrap), configures a Release build in $(BUILD) and builds.
 
 BUILD ?= build
@@ -9,7 +9,7 @@ CMAKE_FLAGS ?=
 FUZZ_BUILD ?= build-fuzz
 FUZZ_RUNS ?= 1000000
 
-.PHONY: all demo test bench fuzz build configure bootstrap format clean
+.PHONY: all demo test bench package fuzz build configure bootstrap format clean
 
 all: build
 
@@ -32,6 +32,11 @@ test: build
 
 bench: build
 	@$(BUILD)/bench/lfsp_bench
+
+# The Debian package (CPack, cmake/LfspPackaging.cmake): the command, man pages, Python module, workflow, samples.
+package: build
+	@cd $(BUILD) && cpack -G DEB > cpack.log 2>&1 || { cat cpack.log; exit 1; }
+	@ls $(BUILD)/packages/lfsp_*.deb
 
 # Every fuzz target as a libFuzzer binary with the whole tree instrumented (clang, ASan, UBSan), each run for
 # FUZZ_RUNS executions from its seeds; the table of executions, coverage and time goes to FUZZING.md's format.

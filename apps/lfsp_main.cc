@@ -19,6 +19,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/version.h"
 
 namespace {
 
@@ -62,7 +63,7 @@ int main(int argc, char** argv) {
   lfsp::SetOptionNamer(CommandLineOptionName);
   CLI::App app{"lfsp: light-field superpixels for lenslet (Lytro) cameras: decode, depth, segmentation, editing",
                "lfsp"};
-  app.set_version_flag("--version", std::string("lfsp ") + LFSP_VERSION);
+  app.set_version_flag("--version", std::string("lfsp ") + lfsp::Version());
   app.require_subcommand(1);
   app.fallthrough();
   bool verbose = false;

@@ -206,16 +206,27 @@ void WriteReport(const ReportInputs& inputs, const PipelineOptions& options, con
   report::Report report = BuildReport(inputs, options);
   report.metrics = metrics;
   report.timings = timings;  // stages so far; the report stage itself is in summary.json
+  report.raw_json = "summary.json";
   std::ofstream file(path);
   file << report::RenderHtml(report);
   if (!file.flush()) ThrowFileError((options.out / "report.html").string(), "write failed");
+}
+
+// The samples installed with the command (<prefix>/share/lfsp/samples beside <prefix>/bin/lfsp, as `cmake --install`
+// and the .deb put them), else the source tree's.
+fs::path BundledSamples() {
+  std::error_code ec;
+  const fs::path command = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path installed = command.parent_path().parent_path() / "share" / "lfsp" / "samples";
+  if (!ec && fs::is_directory(installed, ec)) return installed;
+  return LFSP_SOURCE_SAMPLES_DIR;
 }
 
 }  // namespace
 
 fs::path DefaultSample() {
   const char* configured = std::getenv("LFSP_SAMPLES_DIR");
-  const fs::path samples = configured ? fs::path(configured) : fs::path(LFSP_SOURCE_SAMPLES_DIR);
+  const fs::path samples = configured ? fs::path(configured) : BundledSamples();
   for (const char* candidate : {"mini-illum/capture.LFR", "ideal/ideal.h5"}) {
     std::error_code ec;
     if (fs::exists(samples / candidate, ec)) return samples / candidate;

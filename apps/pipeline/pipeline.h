@@ -36,7 +36,8 @@ struct PipelineResult {
 
 PipelineResult RunPipeline(const PipelineOptions& options);
 
-// The bundled default input: samples/ beside the source tree (LFSP_SAMPLES_DIR overrides).
+// The bundled default input: the installed samples (<prefix>/share/lfsp/samples), else samples/ of the source tree
+// (LFSP_SAMPLES_DIR overrides).
 std::filesystem::path DefaultSample();
 
 }  // namespace lfsp::pipeline

@@ -5,6 +5,9 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "metric_descriptions.h"
+#include "view_shift_plot.h"
+
 namespace lfsp::report {
 namespace {
 
@@ -64,6 +67,93 @@ std::string FormatValue(const nlohmann::ordered_json& value) {
   return value.dump();
 }
 
+std::string_view LastPart(std::string_view key) {
+  const std::size_t dot = key.find('.');
+  return dot == std::string_view::npos ? key : key.substr(dot + 1);
+}
+
+// The words a reader sees for a key: its description's name, with where it was measured ("near depth edges").
+std::string MetricName(const std::string& key, const MetricDescription* description) {
+  std::string name(description != nullptr ? description->name : LastPart(key));
+  std::size_t start = 0;
+  while (start < key.size()) {
+    const std::size_t end = std::min(key.find('.', start), key.size());
+    const std::string_view region = DescribeRegion(std::string_view(key).substr(start, end - start));
+    if (!region.empty()) name += " (" + std::string(region) + ")";
+    start = end + 1;
+  }
+  return name;
+}
+
+const char* BetterText(Better better) {
+  switch (better) {
+    case Better::kHigher:
+      return "&#8593; higher";
+    case Better::kLower:
+      return "&#8595; lower";
+    default:
+      return "";
+  }
+}
+
+// A per-view list drawn as a plot under its group's table.
+struct Plot {
+  std::string key;
+  std::string svg;
+};
+
+// One row per figure of a group of metrics (nested keys joined with dots): name in words and raw key, value with its
+// unit, which way is better, meaning, source. Per-view lists become plots.
+void AppendMetricRows(const nlohmann::ordered_json& value, const std::string& key, std::ostringstream& html,
+                      std::vector<Plot>& plots) {
+  if (value.is_object()) {
+    for (const auto& [child_key, child] : value.items()) AppendMetricRows(child, key + "." + child_key, html, plots);
+    return;
+  }
+  if (IsViewShiftList(value)) {
+    plots.push_back({key, ViewShiftPlotSvg(value)});
+    return;
+  }
+  const MetricDescription* description = DescribeMetric(key);
+  std::string shown = value.is_null() ? std::string("n/a") : FormatValue(value);
+  if (value.is_array()) shown = "a list of " + std::to_string(value.size()) + " (in the raw JSON)";
+  if (description != nullptr && !description->unit.empty() && value.is_number())
+    shown += " " + std::string(description->unit);
+  // A figure the table does not describe yet is marked, so that a test can find it.
+  html << (description != nullptr ? "<tr>" : "<tr class=\"undescribed\">") << "<td>"
+       << Escape(MetricName(key, description)) << "<br><code class=\"key\">" << Escape(key)
+       << "</code></td><td class=\"value\">" << Escape(shown) << "</td><td>"
+       << (description != nullptr ? BetterText(description->better) : "") << "</td><td>"
+       << (description != nullptr ? Escape(std::string(description->meaning)) : "") << "</td><td class=\"source\">"
+       << (description == nullptr        ? ""
+           : description->source.empty() ? "lfsp"
+                                         : Escape(std::string(description->source)))
+       << "</td></tr>\n";
+}
+
+void AppendMetrics(const Report& report, std::ostringstream& html) {
+  html << "<section><h2>Metrics</h2>\n";
+  if (!report.raw_json.empty())
+    html << "<p class=\"note\">Each figure's key is shown in grey; every figure, unrounded, is in <a href=\""
+         << Escape(report.raw_json) << "\">" << Escape(report.raw_json) << "</a> under \"metrics\".</p>\n";
+  for (const auto& [group, values] : report.metrics.items()) {
+    const std::string_view title = DescribeGroup(group);
+    html << "<h3>" << Escape(title.empty() ? group : std::string(title)) << "</h3>\n<table class=\"metrics\"><tr>"
+         << "<th>Figure</th><th>Value</th><th>Better</th><th>Meaning</th><th>Source</th></tr>\n";
+    std::vector<Plot> plots;
+    AppendMetricRows(values, group, html, plots);
+    html << "</table>\n";
+    for (const Plot& plot : plots) {
+      const MetricDescription* description = DescribeMetric(plot.key);
+      html << "<figure>" << plot.svg << "<figcaption><b>" << Escape(MetricName(plot.key, description)) << "</b> "
+           << (description != nullptr ? Escape(std::string(description->meaning)) : "")
+           << ". Hover a view for its numbers. <code class=\"key\">" << Escape(plot.key)
+           << "</code></figcaption></figure>\n";
+    }
+  }
+  html << "</section>\n";
+}
+
 // A nested JSON object as a two-column table, nested keys joined with dots.
 void AppendRows(const nlohmann::ordered_json& value, const std::string& prefix, std::ostringstream& html) {
   if (value.is_object()) {
@@ -83,7 +173,11 @@ figure img { max-width: 100%; min-width: 192px; image-rendering: pixelated; bord
 figcaption { font-size: 0.85em; color: #555; max-width: 560px; }
 table { border-collapse: collapse; margin: 0.5em 0 1em 0; }
 td, th { border: 1px solid #ddd; padding: 0.25em 0.7em; text-align: left; font-size: 0.9em; }
-td:last-child { font-family: monospace; }
+td.value { font-family: monospace; white-space: nowrap; }
+table.metrics td { vertical-align: top; } table.metrics td:nth-child(3) { white-space: nowrap; } table.metrics td.source { color: #555; font-size: 0.8em; }
+code.key { color: #888; font-size: 0.8em; } .note { color: #555; font-size: 0.9em; }
+table.timings td:last-child { font-family: monospace; }
+svg.plot { border: 1px solid #ccc; background: #fff; display: block; }
 )";
 
 constexpr const char* kAnimationScript = R"(
@@ -137,17 +231,9 @@ std::string RenderHtml(const Report& report) {
     }
     html << "</div></section>\n";
   }
-  if (!report.metrics.empty()) {
-    html << "<section><h2>Metrics</h2>\n";
-    for (const auto& [group, values] : report.metrics.items()) {
-      html << "<h3>" << Escape(group) << "</h3><table>\n";
-      AppendRows(values, "", html);
-      html << "</table>\n";
-    }
-    html << "</section>\n";
-  }
+  if (!report.metrics.empty()) AppendMetrics(report, html);
   if (!report.timings.empty()) {
-    html << "<section><h2>Timings (wall seconds)</h2><table>\n";
+    html << "<section><h2>Timings (wall seconds)</h2><table class=\"timings\">\n";
     AppendRows(report.timings, "", html);
     html << "</table></section>\n";
   }

@@ -33,8 +33,9 @@ struct Report {
   std::string title;
   std::string subtitle;
   std::vector<Section> sections;
-  nlohmann::ordered_json metrics;  // shown as tables, one per top-level key
+  nlohmann::ordered_json metrics;  // shown as tables, one per top-level key, described (metric_descriptions.h)
   nlohmann::ordered_json timings;  // stage -> seconds
+  std::string raw_json;            // where the raw figures are, relative to the report (e.g. "summary.json"), or ""
 };
 
 // The whole report as one HTML document (no external files, no network).

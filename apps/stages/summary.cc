@@ -5,6 +5,7 @@
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/version.h"
 
 namespace lfsp::stages {
 namespace {
@@ -20,14 +21,26 @@ void WriteText(const std::string& text, const std::filesystem::path& path) {
   output.Commit();
 }
 
+// The summary with lfsp's version first ("version": the same string as `lfsp --version`); a JSON that is not an
+// object (OUT.planes.json, a list) is written as it is.
+template <typename Json>
+Json WithVersion(const Json& summary) {
+  if (!summary.is_object()) return summary;
+  Json out = Json::object();
+  out["version"] = Version();
+  for (const auto& [key, value] : summary.items())
+    if (key != "version") out[key] = value;
+  return out;
+}
+
 }  // namespace
 
 void WriteJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path) {
-  WriteText(summary.dump(2), path);
+  WriteText(WithVersion(summary).dump(2), path);
 }
 
 void WriteJsonSummary(const nlohmann::ordered_json& summary, const std::filesystem::path& path) {
-  WriteText(summary.dump(2), path);
+  WriteText(WithVersion(summary).dump(2), path);
 }
 
 std::filesystem::path SummaryPathFor(const std::filesystem::path& output) {

@@ -48,6 +48,9 @@ from ._lfsp import (
     write_disparity,
 )
 
+# The same string as `lfsp --version`, every summary JSON and the installed package's metadata.
+__version__: str = _lfsp.__version__
+
 __all__ = [
     "Error",
     "LightField",

@@ -9,6 +9,8 @@ PathLike = Union[str, os.PathLike[str]]
 FloatArray = npt.NDArray[numpy.float32]
 LabelArray = npt.NDArray[numpy.int32]
 
+__version__: str
+
 class Error(ValueError): ...
 
 class LightField:

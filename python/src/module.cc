@@ -8,6 +8,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/progress.h"
+#include "lfsp/core/version.h"
 #include "light_field_binding.h"
 #include "long_work.h"
 #include "stage_bindings.h"
@@ -37,6 +38,7 @@ void BindLogging(py::module_& module) {
 
 PYBIND11_MODULE(_lfsp, module) {
   module.doc() = "lfsp on numpy arrays (see the package lfsp)";
+  module.attr("__version__") = lfsp::Version();  // the same string as `lfsp --version` and every summary
   // Every docstring starts with its own signature, in the keywords' terms (pybind11's would say **kwargs).
   py::options options;
   options.disable_function_signatures();

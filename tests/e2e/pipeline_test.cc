@@ -73,6 +73,9 @@ TEST_F(PipelineEndToEnd, SummaryHasMetricsAgainstGroundTruthAndTimingsThatAddUp)
   EXPECT_GT(stages, 0.9 * wall) << "stage timings must account for the wall time";
   EXPECT_LE(stages, wall);
   EXPECT_GT(summary["recolor"]["changed_rays"].get<long>(), 0);
+  // Every summary names the lfsp that wrote it: the same string as `lfsp --version` (issue 47).
+  ASSERT_TRUE(summary.contains("version"));
+  EXPECT_EQ(RunLfsp({"--version"}).out, "lfsp " + summary["version"].get<std::string>() + "\n");
 }
 
 TEST_F(PipelineEndToEnd, ReportIsSelfContainedWithEverySection) {
@@ -106,6 +109,13 @@ TEST(PipelineOnACapture, ComparesTheDecodeWithTheIdealLightField) {
   const std::string html = ReadBytes(run / "report.html");
   for (const char* expected : {"Decoded against the ideal light field", "Centre-view error", "Per-view registration"})
     EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  // For people (issue 47): every figure named in words with its meaning (metric_descriptions.cc), the per-view
+  // shifts drawn as a plot rather than dumped, the raw JSON a link away.
+  for (const char* expected : {"Bad pixels at 0.07 px", "Self-similarity", "Worst view shift", "<svg class=\"plot\"",
+                               "href=\"summary.json\"", "<code class=\"key\">depth.all.badpix_0.07</code>"})
+    EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  EXPECT_EQ(html.find("class=\"undescribed\""), std::string::npos) << "a metric the report does not describe";
+  EXPECT_EQ(html.find("\"dx\""), std::string::npos) << "per-view shifts dumped as JSON";
 }
 
 TEST(PipelineBadInput, BadRecolorSpecFailsBeforeWritingAnything) {
