@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,10 +80,18 @@ LFSP_BENCH_CASE { return AntinousCase("antinous-no-occlusion", "near-disc. BadPi
 
 namespace {
 
-// Ideal light fields of the simulator's scenes with thin occluders (issue 19), rendered once, untimed.
-std::vector<std::pair<std::string, simulate::RenderedLightField>>& HardScenes() {
+// Ideal 9x9x512x512 light fields of built-in scenes, rendered once per case process, untimed.
+std::vector<std::pair<std::string, simulate::RenderedLightField>>& RenderedScenes() {
   static std::vector<std::pair<std::string, simulate::RenderedLightField>> scenes;
   return scenes;
+}
+
+void RenderAt512(std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    simulate::RenderOptions options;
+    options.width = options.height = 512;
+    RenderedScenes().emplace_back(name, simulate::RenderLightField(simulate::BuiltinScene(name), options));
+  }
 }
 
 }  // namespace
@@ -94,16 +103,10 @@ LFSP_BENCH_CASE {
   c.input = "occluders, comb, layers 9x9x512x512 (ideal light fields), 80 labels";
   c.target = "each at or below SPO (HCI stratified: BadPix0.07 2.55 %, MSEx100 3.24); ~3 s each";
   c.repetitions = 1;
-  c.prepare = [] {
-    for (const char* name : {"occluders", "comb", "layers"}) {
-      simulate::RenderOptions options;
-      options.width = options.height = 512;
-      HardScenes().emplace_back(name, simulate::RenderLightField(simulate::BuiltinScene(name), options));
-    }
-  };
+  c.prepare = [] { RenderAt512({"occluders", "comb", "layers"}); };
   c.run = [] {
     std::string quality;
-    for (auto& [name, rendered] : HardScenes()) {
+    for (auto& [name, rendered] : RenderedScenes()) {
       const Stopwatch stopwatch;
       const depth::DepthResult result = depth::EstimateDepth(rendered.light_field, {});
       const double seconds = stopwatch.Seconds();
@@ -137,11 +140,6 @@ std::string OcclusionEdgeFigures(const std::string& name, const depth::DepthResu
   return text;
 }
 
-std::vector<std::pair<std::string, simulate::RenderedLightField>>& EdgeScenes() {
-  static std::vector<std::pair<std::string, simulate::RenderedLightField>> scenes;
-  return scenes;
-}
-
 }  // namespace
 
 // Depth at occlusion edges (issue 43): the scenes that show foreground fattening (bars) and sub-pixel precision on
@@ -156,16 +154,12 @@ LFSP_BENCH_CASE {
   c.needs_shared_data = true;
   c.repetitions = 1;
   c.prepare = [] {
-    for (const char* name : {"bars", "sculpture", "occluders", "comb", "layers"}) {
-      simulate::RenderOptions options;
-      options.width = options.height = 512;
-      EdgeScenes().emplace_back(name, simulate::RenderLightField(simulate::BuiltinScene(name), options));
-    }
+    RenderAt512({"bars", "sculpture", "occluders", "comb", "layers"});
     Load();
   };
   c.run = [] {
     std::string quality;
-    for (auto& [name, rendered] : EdgeScenes()) {
+    for (auto& [name, rendered] : RenderedScenes()) {
       const Stopwatch stopwatch;
       const depth::DepthResult result = depth::EstimateDepth(rendered.light_field, {});
       quality += OcclusionEdgeFigures(name, result, rendered.disparity, stopwatch.Seconds());

@@ -6,20 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "evaluation_checks.h"
 #include "lfsp/core/error.h"
 #include "lfsp/depth/region_metrics.h"
 
 namespace lfsp::depth {
 namespace {
-
-void CheckSameSize(const DisparityMap& algo, const DisparityMap& gt) {
-  if (algo.empty() || gt.empty()) throw Error("depth evaluation: empty disparity map");
-  if (algo.width() != gt.width() || algo.height() != gt.height()) {
-    throw Error("depth evaluation: algorithm result is " + std::to_string(algo.width()) + "x" +
-                std::to_string(algo.height()) + " but the ground truth is " + std::to_string(gt.width()) + "x" +
-                std::to_string(gt.height()));
-  }
-}
 
 double Percentage(std::size_t total, std::size_t part) {
   return total == 0 ? std::nan("") : 100.0 * static_cast<double>(part) / static_cast<double>(total);
@@ -35,17 +27,17 @@ cv::Mat BoundaryMask(int width, int height, int boundary) {
   return mask;
 }
 
-cv::Mat DiscontinuityRegion(const DisparityMap& gt, double jump, double radius) {
-  const int w = gt.width();
-  const int h = gt.height();
-  // Edge pixels are marked with 0 for cv::distanceTransform, everything else 255.
-  cv::Mat not_edge(h, w, CV_8U, cv::Scalar(255));
+cv::Mat DistanceToDisparityJumps(const DisparityMap& map, double jump) {
+  const int w = map.width();
+  const int h = map.height();
+  // Both pixels of a jump are marked with 0 for cv::distanceTransform, everything else 255.
+  cv::Mat not_jump(h, w, CV_8U, cv::Scalar(255));
   auto mark_step = [&](int y0, int x0, int y1, int x1) {
-    const float a = gt.at(y0, x0);
-    const float b = gt.at(y1, x1);
+    const float a = map.at(y0, x0);
+    const float b = map.at(y1, x1);
     if (std::isfinite(a) && std::isfinite(b) && std::abs(a - b) > jump) {
-      not_edge.at<unsigned char>(y0, x0) = 0;
-      not_edge.at<unsigned char>(y1, x1) = 0;
+      not_jump.at<unsigned char>(y0, x0) = 0;
+      not_jump.at<unsigned char>(y1, x1) = 0;
     }
   };
   for (int y = 0; y < h; ++y) {
@@ -55,17 +47,19 @@ cv::Mat DiscontinuityRegion(const DisparityMap& gt, double jump, double radius) 
     }
   }
   cv::Mat distance;
-  cv::distanceTransform(not_edge, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(not_jump, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  return distance;
+}
+
+cv::Mat DiscontinuityRegion(const DisparityMap& gt, double jump, double radius) {
   cv::Mat region;
-  cv::compare(distance, radius, region, cv::CMP_LE);
+  cv::compare(DistanceToDisparityJumps(gt, jump), radius, region, cv::CMP_LE);
   return region;
 }
 
 DepthMetrics ComputeMetrics(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region, int boundary) {
   CheckSameSize(algo, gt);
-  if (region.rows != gt.height() || region.cols != gt.width() || region.type() != CV_8U) {
-    throw Error("depth evaluation: region mask must be an 8-bit map of the ground truth's size");
-  }
+  CheckRegion(gt, region);
   const cv::Mat inside = BoundaryMask(gt.width(), gt.height(), boundary);
   DepthMetrics metrics;
   double squared_sum = 0.0;

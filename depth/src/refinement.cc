@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/depth/metrics.h"
 
 namespace lfsp::depth {
 
@@ -139,18 +140,7 @@ void LowerConfidenceNearDepthEdges(DisparityMap& confidence, const DisparityMap&
   const int h = disparity.height();
   if (confidence.width() != w || confidence.height() != h)
     throw Error("depth: the confidence map and the disparity differ in size");
-  // Both pixels of a jump are edge pixels (0 for cv::distanceTransform).
-  cv::Mat not_edge(h, w, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float here = disparity.at(y, x);
-      if (x + 1 < w && std::abs(disparity.at(y, x + 1) - here) > options.jump)
-        not_edge.at<unsigned char>(y, x) = not_edge.at<unsigned char>(y, x + 1) = 0;
-      if (y + 1 < h && std::abs(disparity.at(y + 1, x) - here) > options.jump)
-        not_edge.at<unsigned char>(y, x) = not_edge.at<unsigned char>(y + 1, x) = 0;
-    }
-  cv::Mat distance;
-  cv::distanceTransform(not_edge, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const cv::Mat distance = DistanceToDisparityJumps(disparity, options.jump);
   const float inverse = 1.0f / (2.0f * options.radius * options.radius);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 
+#include "evaluation_checks.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 
@@ -40,14 +41,9 @@ cv::Mat AsDouble(const DisparityMap& map) {
   return out;
 }
 
-void CheckSameSize(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region) {
-  if (algo.empty() || gt.empty()) throw Error("depth evaluation: empty disparity map");
-  if (algo.width() != gt.width() || algo.height() != gt.height())
-    throw Error("depth evaluation: algorithm result is " + std::to_string(algo.width()) + "x" +
-                std::to_string(algo.height()) + " but the ground truth is " + std::to_string(gt.width()) + "x" +
-                std::to_string(gt.height()));
-  if (region.rows != gt.height() || region.cols != gt.width() || region.type() != CV_8U)
-    throw Error("depth evaluation: region mask must be an 8-bit map of the ground truth's size");
+void CheckInputs(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region) {
+  CheckSameSize(algo, gt);
+  CheckRegion(gt, region);
 }
 
 // Calls visit(y, x) for every pixel of `region` inside the evaluation frame.
@@ -121,7 +117,7 @@ EvaluationMasks ReadEvaluationMasks(const std::filesystem::path& folder, const D
 }
 
 double Bumpiness(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region, int boundary) {
-  CheckSameSize(algo, gt, region);
+  CheckInputs(algo, gt, region);
   constexpr double kClip = 0.05;
   const cv::Mat norm = HessianNorm(AsDouble(algo) - AsDouble(gt));
   double sum = 0.0;
@@ -136,7 +132,7 @@ double Bumpiness(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat
 }
 
 double FatteningIndex(const DisparityMap& algo, const DisparityMap& gt, const cv::Mat& region, int boundary) {
-  CheckSameSize(algo, gt, region);
+  CheckInputs(algo, gt, region);
   std::size_t bad = 0, nearer = 0;
   ForEachEvaluated(region, boundary, [&](int y, int x) {
     const float difference = algo.at(y, x) - gt.at(y, x);
@@ -150,7 +146,7 @@ double FatteningIndex(const DisparityMap& algo, const DisparityMap& gt, const cv
 Sparsification SparsificationOf(const DisparityMap& algo, const DisparityMap& gt, const DisparityMap& confidence,
                                 int boundary) {
   const cv::Mat everything(gt.height(), gt.width(), CV_8U, cv::Scalar(255));
-  CheckSameSize(algo, gt, everything);
+  CheckInputs(algo, gt, everything);
   if (confidence.width() != gt.width() || confidence.height() != gt.height())
     throw Error("depth evaluation: the confidence map is " + std::to_string(confidence.width()) + "x" +
                 std::to_string(confidence.height()) + " but the ground truth is " + std::to_string(gt.width()) + "x" +

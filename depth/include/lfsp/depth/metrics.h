@@ -68,6 +68,11 @@ struct DepthEvaluation {
 // distributed with the low-resolution data, so we derive the region from the ground truth itself.
 cv::Mat DiscontinuityRegion(const DisparityMap& gt, double jump, double radius);
 
+// Per pixel (CV_32F), the Euclidean distance to the nearest pixel of a jump of more than `jump` between finite
+// 4-neighbours of `map` (both sides of a jump are at 0). The discontinuity region and the confidence's edge term
+// (refinement.h) are both measured with it.
+cv::Mat DistanceToDisparityJumps(const DisparityMap& map, double jump);
+
 // The toolkit's evaluation frame: CV_8U, 255 inside, 0 on the `boundary`-wide frame.
 cv::Mat BoundaryMask(int width, int height, int boundary);
 
