@@ -31,6 +31,7 @@ RenderedLightField RenderLightField(const Scene& scene, const RenderOptions& opt
   const bool keep_views = options.per_view_disparity;
   out.view_disparity.assign(keep_views ? shape.Views() : 0, DisparityMap(options.width, options.height));
   out.disparity = DisparityMap(options.width, options.height);
+  out.centre_objects = cv::Mat(options.height, options.width, CV_32S, cv::Scalar(-1));
 
   const int n = options.supersampling;
   const float inv_samples = 1.0f / static_cast<float>(n * n);
@@ -64,7 +65,10 @@ RenderedLightField RenderLightField(const Scene& scene, const RenderOptions& opt
       for (int c = 0; c < 3; ++c) rgb[3 * x + c] = std::clamp(sum[c] * inv_samples, 0.0f, 1.0f);
       labels[x] = tracer.Label(centre_hit.object);
       if (keep_views) out.view_disparity[static_cast<std::size_t>(cam)].at(y, x) = centre_hit.disparity;
-      if (view == centre) out.disparity.at(y, x) = centre_hit.disparity;
+      if (view == centre) {
+        out.disparity.at(y, x) = centre_hit.disparity;
+        out.centre_objects.at<std::int32_t>(y, x) = centre_hit.object;
+      }
     }
   }
 

@@ -4,6 +4,7 @@
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/simulate/calibration_set.h"
+#include "lfsp/simulate/evaluation_masks.h"
 #include "lfsp/simulate/lenslet_camera.h"
 #include "lfsp/simulate/lytro_writer.h"
 #include "lfsp/simulate/render.h"
@@ -166,6 +167,9 @@ SimulateResult Simulate(const SimulateOptions& options, const std::filesystem::p
     summary["timings_s"]["render_ideal"] = stopwatch.Seconds();
     WriteBundle(ToBundle(rendered, scene), out_dir / "ideal.h5", bundle_options);
     result.files.push_back("ideal.h5");
+    // The benchmark's evaluation regions beside the ground truth, where `lfsp evaluate depth` looks for them.
+    WriteEvaluationMasks(EvaluationMasksOf(rendered, scene), out_dir);
+    for (const char* name : kEvaluationMaskFiles) result.files.push_back(name);
     summary["ideal"] = {{"views", options.views}, {"width", options.width}, {"height", options.height}};
   } else {
     const CameraModel camera = CameraPreset(options.camera);

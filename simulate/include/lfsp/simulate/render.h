@@ -25,6 +25,8 @@ struct RenderedLightField {
   Labels labels;                             // object label of the ray through each pixel centre (nearest wins)
   std::vector<DisparityMap> view_disparity;  // per view (row-major cam = v * nu + u), of the pixel-centre ray
   DisparityMap disparity;                    // centre view (same as view_disparity[centre])
+  cv::Mat centre_objects;                    // CV_32S, centre view: index into Scene::objects of each pixel-centre
+                                             // ray's hit, -1 where it hits nothing (the evaluation masks use it)
 };
 
 // Throws lfsp::Error unless the options can be rendered (views 1..64 per axis, view size 1..16384, supersampling
