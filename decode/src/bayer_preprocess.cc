@@ -67,16 +67,16 @@ cv::Mat InverseWhite(const RawImage& white, const PhaseLevels& white_levels, con
 }
 
 cv::Mat LevelAndDevignette(const RawImage& raw, const PhaseLevels& levels, const cv::Mat& inverse_white,
-                           float hot_margin, long& hot_pixels) {
+                           float hot_margin, long& hot_pixels, long& clipped_samples) {
   const int width = raw.width, height = raw.height;
   if (inverse_white.cols != width || inverse_white.rows != height)
     throw Error("white image and capture differ in size: they must come from the same sensor");
   cv::Mat bayer(height, width, CV_32F);
-  long found = 0;
+  long found = 0, clipped = 0;
   auto row_of = [&](int y) {
     return raw.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
   };
-#pragma omp parallel for schedule(static) reduction(+ : found)
+#pragma omp parallel for schedule(static) reduction(+ : found, clipped)
   for (int y = 0; y < height; ++y) {
     const std::uint16_t* row = row_of(y);
     const bool interior_row = hot_margin > 0.0f && y >= 2 && y < height - 2;
@@ -98,10 +98,13 @@ cv::Mat LevelAndDevignette(const RawImage& raw, const PhaseLevels& levels, const
           ++found;
         }
       }
-      out[x] = (value - levels.black[phase]) * levels.scale[phase] * inverse[x];
+      const float levelled = (value - levels.black[phase]) * levels.scale[phase];
+      if (levelled >= kClippedLevel) ++clipped;
+      out[x] = levelled * inverse[x];
     }
   }
   hot_pixels = found;
+  clipped_samples = clipped;
   return bayer;
 }
 

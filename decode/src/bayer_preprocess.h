@@ -24,8 +24,13 @@ cv::Mat InverseWhite(const RawImage& white, const PhaseLevels& white_levels, con
 // A pixel brighter than all 8 nearest same-colour neighbours (2 px away) by more than `hot_margin` (fraction of
 // white - black; <= 0 disables) is replaced by the mean of its 4 axial same-colour neighbours: micro-images are
 // smooth at the pixel scale (each pixel is a different view of one scene point), so only defects stand out like
-// that. `hot_pixels` receives the number replaced.
+// that. `hot_pixels` receives the number replaced, `clipped_samples` the number levelled at or above
+// kClippedLevel (the sensor's or the file's ceiling, before devignetting).
 cv::Mat LevelAndDevignette(const RawImage& raw, const PhaseLevels& levels, const cv::Mat& inverse_white,
-                           float hot_margin, long& hot_pixels);
+                           float hot_margin, long& hot_pixels, long& clipped_samples);
+
+// A levelled sample this close to 1 counts as clipped: a 12-bit sensor's last codes, or an 8-bit JPEG mosaic's 255
+// after the restoration has moved it by a code or two.
+inline constexpr float kClippedLevel = 0.98f;
 
 }  // namespace lfsp::decode

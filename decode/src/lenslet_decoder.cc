@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "bayer_preprocess.h"
+#include "highlights.h"
 #include "lenslet_slicing.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/stopwatch.h"
@@ -150,6 +151,8 @@ nlohmann::json DecodeReport::ToJson() const {
           {"colour", colour},
           {"white_balance", white_balance},
           {"hot_pixels_corrected", hot_pixels_corrected},
+          {"clipped_samples", clipped_samples},
+          {"highlights_neutralised", highlights_neutralised},
           {"output_scale", output_scale},
           {"row_alternation", row_alternation},
           {"centre_bands", {{"chroma", centre_bands[0]}, {"luma", centre_bands[1]}}},
@@ -229,13 +232,13 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
   cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
                                      options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
-                                     out_report.hot_pixels_corrected);
+                                     out_report.hot_pixels_corrected, out_report.clipped_samples);
   lap("levels_hot_pixels_devignette");
 
   // 2. Demosaic.
   const cv::Mat lens_labels = LensLabels(grid);
   const MicroImages micro_images{white.grey, lens_labels};
-  const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
+  cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
   bayer.release();
   lap("demosaic");
 
@@ -244,6 +247,11 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   RayColour colour;
   const std::array<double, 3> balance =
       ResolveWhiteBalance(options, capture_metadata, rgb, white.grey, out_report.white_balance);
+  if (out_report.clipped_samples > 0) {
+    // What a sensor clipped everywhere would decode to: each channel's ceiling at each pixel.
+    const cv::Mat ceilings = Demosaic(white.inverse, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
+    out_report.highlights_neutralised = NeutraliseClippedHighlights(rgb, ceilings, balance, kClippedLevel);
+  }
   colour.matrix = ColourMatrix(capture_metadata, options.colour, balance);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
@@ -273,6 +281,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                                     {"white_balance", out_report.white_balance},
                                     {"output_scale", out_report.output_scale},
                                     {"hot_pixels_corrected", out_report.hot_pixels_corrected},
+                                    {"highlights_neutralised", out_report.highlights_neutralised},
                                     {"view_step_pixels", geometry.view_step},
                                     {"grid_spacing_x", grid.spacing_x},
                                     {"grid_spacing_y", grid.spacing_y},

@@ -83,10 +83,12 @@ simulate::CameraModel CropCamera(const std::string& camera_name) {
   return camera;
 }
 
-Shot Simulate(const std::string& camera_name, const simulate::CaptureOptions& options, bool with_truth = true) {
+// A capture of `scene` (default: PlanesAtIllumScale).
+Shot Simulate(const std::string& camera_name, const simulate::CaptureOptions& options, bool with_truth = true,
+              const std::optional<simulate::Scene>& given_scene = std::nullopt) {
   Shot shot;
   shot.camera = CropCamera(camera_name);
-  const simulate::Scene scene = PlanesAtIllumScale(shot.camera);
+  const simulate::Scene scene = given_scene ? *given_scene : PlanesAtIllumScale(shot.camera);
   shot.capture = simulate::RenderRawCapture(scene, shot.camera, options);
   shot.white = simulate::RenderWhiteImage(shot.camera, shot.camera.capture_setting, 5);
   shot.capture_metadata = ParseFrameMetadata(simulate::FrameMetadata(shot.camera, shot.capture),
@@ -301,6 +303,47 @@ WhiteComparison CompareWithAndWithoutWhite(const Shot& shot, const LensletGrid& 
 TEST_F(CropIllumDecode, WithoutAWhiteImageWithin1DbOfTheWhiteImageDecode) {
   const WhiteComparison comparison = CompareWithAndWithoutWhite(*shot_, *grid_, 4);
   EXPECT_GE(comparison.without, comparison.with_white - 1.0);
+}
+
+// Issue 49: a highlight the sensor clipped in every channel has lost its colour. It must decode neutral, not in the
+// colour of the white-balance gains (a real F01 frame's clipped white petals read blue, 1.21 x red, under gains 1.01,
+// 1, 1.28). A grey plane, decoded with gains 1, 1, 1.5 (which balance the simulated sensor's weaker blue), reads grey
+// within the sensor's range (no clipped sample: the step does not run) and still grey exposed at 3x the ceiling,
+// where the gains alone would make it blue (1.48 x green without this step).
+TEST(Decode, ClippedHighlightsDecodeNeutral) {
+  // A grey plane with a faint texture (the grid fit needs none: it reads the white image).
+  const simulate::Scene grey = simulate::SceneFromJson(nlohmann::json::parse(R"({"name": "grey", "objects": [
+      {"name": "wall", "type": "plane", "label": 0, "disparity": 0.0, "shape": {"type": "everywhere"},
+       "texture": {"type": "noise", "period": 0.05, "seed": 3, "colours": [[0.8, 0.8, 0.8], [0.9, 0.9, 0.9]]}}]})"));
+  for (const double exposure : {0.7, 3.0}) {
+    SCOPED_TRACE(exposure);
+    simulate::CaptureOptions options;
+    options.noise = false;
+    options.exposure = exposure;
+    const Shot shot = Simulate("crop-f01", options, false, grey);
+    DecodeOptions decode_options;
+    decode_options.colour = ColourMode::kCamera;
+    decode_options.white_balance = WhiteBalance{WhiteBalanceMode::kGains, {1.0, 1.0, 1.5}};
+    DecodeReport report;
+    const LightField decoded = DecodeLenslet(ToRawImage(shot.capture), shot.capture_metadata, ToRawImage(shot.white),
+                                             shot.white_metadata, FitGrid(shot), decode_options, &report);
+    // The centre view's channel means away from the border.
+    const ViewIndex centre = decoded.shape().Centre();
+    std::array<double, 3> sum{};
+    for (int y = 10; y < decoded.shape().height - 10; ++y)
+      for (int x = 10; x < decoded.shape().width - 10; ++x)
+        for (int c = 0; c < 3; ++c) sum[static_cast<std::size_t>(c)] += decoded.at(centre, y, x, c);
+    if (exposure < 1.0) {
+      EXPECT_EQ(report.clipped_samples, 0);
+      EXPECT_EQ(report.highlights_neutralised, 0);
+      // Unclipped, the gains balance the simulated sensor's weaker blue: grey reads grey.
+      EXPECT_NEAR(sum[2] / sum[1], 1.0, 0.02);
+      continue;
+    }
+    EXPECT_GT(report.highlights_neutralised, 10000);
+    EXPECT_NEAR(sum[2] / sum[1], 1.0, 0.02);
+    EXPECT_NEAR(sum[0] / sum[1], 1.0, 0.02);
+  }
 }
 
 TEST(Decode, F01WithoutAWhiteImageWithin1DbOfTheWhiteImageDecode) {

@@ -62,8 +62,10 @@ struct DecodeReport {
   std::string colour;
   nlohmann::json white_balance;  // mode, gains (R, G, B) and, for auto, what the estimate saw
   long hot_pixels_corrected = 0;
-  double output_scale = 1.0;     // the factor that brought the brightest decoded sample to <= 1 (no clipping)
-  double row_alternation = 0.0;  // RowAlternationRatio of the result (~1 clean, > 2 striped)
+  long clipped_samples = 0;         // sensor samples at the raw ceiling (kClippedLevel of white - black)
+  long highlights_neutralised = 0;  // pixels NeutraliseClippedHighlights limited (highlights.h)
+  double output_scale = 1.0;        // the factor that brought the brightest decoded sample to <= 1 (no clipping)
+  double row_alternation = 0.0;     // RowAlternationRatio of the result (~1 clean, > 2 striped)
   // ChromaBandRatio and LumaBandRatio of the centre view (view_bands.h: clean decodes read 1.8-2.9)
   std::array<double, 2> centre_bands = {0.0, 0.0};
   std::optional<LatticeGainReport> lattice_gain;  // what FlattenLatticeGain found; none when it did not run
