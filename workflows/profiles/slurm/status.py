@@ -54,4 +54,12 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # Snakemake stopped listening (it is shutting down, or timed the call out): no answer is wanted, and a
+        # traceback in its log would read as a failure. Point stdout at /dev/null so the exit flush is quiet too.
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)
