@@ -166,11 +166,10 @@ LFSP_BENCH_CASE {
       // The simulator's regions, from each pixel's object (what `lfsp simulate` writes as mask_*.png).
       const simulate::SceneEvaluationMasks regions =
           simulate::EvaluationMasksOf(rendered, simulate::BuiltinScene(name));
-      depth::EvaluationMasks masks;
-      masks.discontinuities = regions.discontinuities;
-      masks.planes = regions.planes;
-      masks.smooth_surfaces = regions.smooth_surfaces;
-      quality += OcclusionEdgeFigures(name, result, rendered.disparity, masks, seconds);
+      const char* source = "the simulator's geometry";
+      quality += OcclusionEdgeFigures(
+          name, result, rendered.disparity,
+          {regions.discontinuities, regions.planes, regions.smooth_surfaces, source, source, source}, seconds);
     }
     const Stopwatch stopwatch;
     const depth::DepthResult result = depth::EstimateDepth(Loaded().light_field, {});

@@ -25,20 +25,15 @@ struct Scored {
   DepthEvaluation evaluation;
 };
 
-EvaluationMasks FromSimulator(const simulate::SceneEvaluationMasks& scene_masks) {
-  EvaluationMasks masks;
-  masks.discontinuities = scene_masks.discontinuities;
-  masks.planes = scene_masks.planes;
-  masks.smooth_surfaces = scene_masks.smooth_surfaces;
-  return masks;
-}
-
 Scored RenderAndScore(const char* scene) {
   simulate::RenderOptions options;
   options.width = options.height = 512;
   Scored scored{simulate::RenderLightField(simulate::BuiltinScene(scene), options), {}, {}};
   const DisparityMap& gt = scored.rendered.disparity;
-  scored.masks = FromSimulator(simulate::EvaluationMasksOf(scored.rendered, simulate::BuiltinScene(scene)));
+  const simulate::SceneEvaluationMasks regions =
+      simulate::EvaluationMasksOf(scored.rendered, simulate::BuiltinScene(scene));
+  const char* source = "the simulator's geometry";
+  scored.masks = {regions.discontinuities, regions.planes, regions.smooth_surfaces, source, source, source};
   const DepthResult result = EstimateDepth(scored.rendered.light_field, {});
   scored.evaluation = EvaluateDisparity(result.disparity, gt, MetricOptions{}, scored.masks, &result.confidence);
   return scored;
@@ -103,7 +98,9 @@ TEST(OcclusionEdges, SimulatorRegionsFollowTheGeometryAndRoundTripThroughFiles) 
       const int object = rendered.centre_objects.at<std::int32_t>(y, x);
       const bool curved = object >= 0 && scene.objects[static_cast<std::size_t>(object)].geometry ==
                                              simulate::SceneObject::Geometry::kEllipsoid;
-      if (curved) ASSERT_EQ(masks.planes.at<unsigned char>(y, x), 0) << y << "," << x;
+      if (curved) {
+        ASSERT_EQ(masks.planes.at<unsigned char>(y, x), 0) << y << "," << x;
+      }
     }
   EXPECT_GT(cv::countNonZero(masks.smooth_surfaces), 1000);
 
