@@ -296,6 +296,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
         stages::ScoreRun(depth.estimate.disparity, segmentation.lfsp.labels,
                          {bundle.disparity ? &*bundle.disparity : nullptr, bundle.labels ? &*bundle.labels : nullptr});
     if (truth_comparison) scores["decode_vs_truth"] = ToJson(*truth_comparison);
+    if (depth.summary.contains("lattice_peak"))
+      scores["depth_maps"] = {{"lattice_peak", depth.summary["lattice_peak"]}};
     return scores;
   });
 

@@ -104,6 +104,16 @@ constexpr std::array kDescriptions = {
                       Better::kNeither, "what a perfectly consistent segmentation scores", kKhan},
     MetricDescription{"segmentation.khan.labels_per_pixel_reference", "Labels per pixel of a perfect carry (Khan)", "",
                       Better::kNeither, "what a perfectly consistent segmentation scores", kKhan},
+    // The depth maps themselves, no ground truth needed (depth/include/lfsp/depth/lattice_peak.h).
+    MetricDescription{"depth_maps.lattice_peak.*.ratio", "Lens lattice in the map", "", Better::kLower,
+                      "the strongest spectral peak at a frequency where the lens lattice of a lenslet decode shows "
+                      "in the views, over the spectrum's median around it (Welch, 64 px blocks): about 1 is none, "
+                      "a visible lattice reads several",
+                      ""},
+    MetricDescription{"depth_maps.lattice_peak.*.fx", "Its frequency across", "cycles/px", Better::kNeither,
+                      "horizontal frequency of that peak", ""},
+    MetricDescription{"depth_maps.lattice_peak.*.fy", "Its frequency down", "cycles/px", Better::kNeither,
+                      "vertical frequency of that peak", ""},
     // The decode of a simulated capture against its ideal light field (apps/pipeline/truth_comparison.h).
     MetricDescription{"decode_vs_truth.centre_view.mean_abs_error_rms", "Centre-view error (RMS)", "linear light",
                       Better::kLower, "RMS of the decoded centre view's error against the ideal one, gains matched",
@@ -151,6 +161,7 @@ std::string_view DescribeGroup(std::string_view group) {
   if (group == "depth") return "Depth against the true disparity";
   if (group == "segmentation") return "Superpixels";
   if (group == "decode_vs_truth") return "Decode against the ideal light field";
+  if (group == "depth_maps") return "The depth maps themselves";
   return "";
 }
 

@@ -4,6 +4,7 @@
 
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/depth/depth_io.h"
+#include "lfsp/depth/lattice_peak.h"
 #include "lfsp/depth/metrics.h"
 #include "lfsp/depth/region_metrics.h"
 #include "stages/summary.h"
@@ -28,6 +29,14 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["thin_structure_refusals"] = estimate.thin_structure_refusals;
   const nlohmann::ordered_json choices = depth::AutomaticChoicesToJson(estimate);
   for (const auto& [key, value] : choices.items()) summary[key] = value;
+  // How strongly the lens lattice shows in the maps of a lenslet decode (issue 49; about 1 is none), when they are
+  // large enough to tell.
+  if (const auto frequencies = depth::LensLatticeFrequencies(bundle.light_field)) {
+    const auto confidence = depth::StrongestLatticePeak(estimate.confidence.Mat(), *frequencies);
+    const auto disparity = depth::StrongestLatticePeak(estimate.disparity.Mat(), *frequencies);
+    if (confidence && disparity)
+      summary["lattice_peak"] = {{"confidence", depth::ToJson(*confidence)}, {"disparity", depth::ToJson(*disparity)}};
+  }
   const std::optional<DisparityMap>& truth = bundle.disparity;
   if (truth && truth->width() == estimate.disparity.width() && truth->height() == estimate.disparity.height()) {
     const depth::MetricOptions metric_options;

@@ -150,6 +150,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     lap("weighted_median");
   }
   LowerConfidenceNearDepthEdges(estimate.confidence, estimate.disparity);
+  if (options.regularise) RemoveConfidenceStreaks(estimate.confidence);
   result.disparity = std::move(estimate.disparity);
   result.confidence = std::move(estimate.confidence);
   return result;

@@ -149,4 +149,13 @@ void LowerConfidenceNearDepthEdges(DisparityMap& confidence, const DisparityMap&
     }
 }
 
+void RemoveConfidenceStreaks(DisparityMap& confidence) {
+  if (confidence.width() < 3 || confidence.height() < 3) return;
+  cv::Mat map = confidence.Mat(), filtered;
+  for (int pass = 0; pass < 2; ++pass) {
+    cv::medianBlur(map, filtered, 3);
+    filtered.copyTo(map);  // back into the map's own memory
+  }
+}
+
 }  // namespace lfsp::depth
