@@ -10,6 +10,7 @@
 #include "bayer_preprocess.h"
 #include "lenslet_slicing.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lattice_pattern.h"
@@ -155,7 +156,9 @@ nlohmann::json DecodeReport::ToJson() const {
           {"centre_bands", {{"chroma", centre_bands[0]}, {"luma", centre_bands[1]}}},
           {"lattice_gain", LatticeGainJson(lattice_gain)},
           {"seconds", seconds},
-          {"cpu_seconds", cpu_seconds}};
+          {"cpu_seconds", cpu_seconds},
+          {"resident_mb", resident_mb},
+          {"peak_resident_mb", peak_resident_mb}};
 }
 
 PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
@@ -196,9 +199,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report = {};
   out_report.demosaic = std::string(ToString(options.demosaic));
   out_report.colour = std::string(ToString(options.colour));
-  // Wall and CPU seconds of each step into the report (the CPU time shows how well a step uses the cores).
+  // Wall and CPU seconds of each step into the report (the CPU time shows how well a step uses the cores), and the
+  // memory the process holds after it (where the peak comes from).
   Stopwatch stopwatch;
-  const auto lap = [&](const char* step) { out_report.seconds[step] = stopwatch.Lap(&out_report.cpu_seconds[step]); };
+  const auto lap = [&](const char* step) {
+    out_report.seconds[step] = stopwatch.Lap(&out_report.cpu_seconds[step]);
+    out_report.resident_mb[step] = ResidentMegabytes();
+    out_report.peak_resident_mb[step] = PeakResidentMegabytes();
+  };
   CheckSize(capture, grid.sensor_width, grid.sensor_height, capture_metadata.source);
   if (white.inverse.cols != grid.sensor_width || white.inverse.rows != grid.sensor_height ||
       white.grey.size() != white.inverse.size())
@@ -265,6 +273,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report.row_alternation = RowAlternationRatio(light_field);
   const ViewIndex centre = light_field.shape().Centre();
   out_report.centre_bands = {ChromaBandRatio(light_field, centre), LumaBandRatio(light_field, centre)};
+  lap("view_quality");
 
   light_field.metadata["decode"] = {{"source", capture_metadata.source},
                                     {"white_image", white.source},
