@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#ifdef __GLIBC__  // defined by the headers above
+#include <malloc.h>
+#endif
 
 namespace lfsp {
 
@@ -21,6 +24,12 @@ double PeakResidentMegabytes() {
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+void ReturnFreedMemory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace lfsp

@@ -138,6 +138,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   }
+  white->raw = RawImage{};  // prepared: the decode needs only its inverse and grey versions from here on
   lap("white_preparation_and_grid");
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());

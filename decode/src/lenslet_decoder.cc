@@ -220,8 +220,27 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                 " differs from the capture's " + std::string(ToString(capture_format.mosaic)));
   const DecodedGeometry geometry = DecodedGeometryFor(grid);
 
-  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others prepare the
-  // sensor image: the fill is serial, the steps below are parallel.
+  // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
+  const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
+  cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
+                                     options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
+                                     out_report.hot_pixels_corrected);
+  // What the steps before the decode freed (the white database's reads, the grid fit's images) goes back first.
+  ReturnFreedMemory();
+  lap("levels_hot_pixels_devignette");
+
+  // 2. Demosaic.
+  const cv::Mat lens_labels = LensLabels(grid);
+  const MicroImages micro_images{white.grey, lens_labels};
+  const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
+  bayer.release();
+  // The Bayer image and the demosaic's own buffers are free: their pages go back before the light field fills up.
+  ReturnFreedMemory();
+  lap("demosaic");
+
+  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others measure the
+  // exposure: the fill is serial, that step parallel. Not earlier: beside the demosaic's sensor-size buffers it
+  // made the decode's peak (issue 46).
   LightFieldShape shape;
   shape.nu = shape.nv = geometry.views;
   shape.width = geometry.width;
@@ -232,20 +251,6 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
     allocated.EnableWeights(0.0f);
     return allocated;
   });
-
-  // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
-  const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
-  cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
-                                     options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
-                                     out_report.hot_pixels_corrected);
-  lap("levels_hot_pixels_devignette");
-
-  // 2. Demosaic.
-  const cv::Mat lens_labels = LensLabels(grid);
-  const MicroImages micro_images{white.grey, lens_labels};
-  const cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
-  bayer.release();
-  lap("demosaic");
 
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
   //    never clipped: the whole light field is darkened instead).

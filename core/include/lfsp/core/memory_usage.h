@@ -8,4 +8,10 @@ namespace lfsp {
 double ResidentMegabytes();
 double PeakResidentMegabytes();
 
+// Gives the pages of freed heap blocks back to the system (glibc's malloc_trim; nothing elsewhere). The `lfsp`
+// executable keeps freed blocks in its heap so a stage reuses them without page faults (apps/lfsp_main.cc), but
+// blocks a step has freed and that nothing later fits into would then count in the peak: a step that has just
+// freed sensor-size buffers calls this before the next large allocation (issue 46; docs/DESIGN.md, "Peak memory").
+void ReturnFreedMemory();
+
 }  // namespace lfsp
