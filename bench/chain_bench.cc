@@ -310,6 +310,54 @@ LFSP_BENCH_CASE {
 LFSP_BENCH_CASE { return PipelineCase(true); }
 LFSP_BENCH_CASE { return PipelineCase(false); }
 
+namespace {
+
+// The two builds' seconds of each run of the alternating case, in its own process.
+std::vector<double>& AlternatingSeconds(bool reference) {
+  static std::vector<double> seconds[2];
+  return seconds[reference ? 1 : 0];
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n == 0 ? 0.0 : (n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]));
+}
+
+}  // namespace
+
+// The same two runs alternated, reference first in odd repetitions and second in even ones, so a change of load on
+// the shared machine falls on both builds alike; the quality column gives each build's median and their ratio.
+LFSP_BENCH_CASE {
+  BenchCase c;
+  c.stage = "chain";
+  c.name = "illum-pipeline-alternating";
+  c.input = "Illum 7728x5368 two-horses, simulated capture: reference and this build alternated, per repetition";
+  c.target = "ratio < 1";
+  c.repetitions = 3;
+  c.unavailable = NoReference;
+  c.setup = [] { Capture(); };
+  c.run = [] {
+    static int repetition = 0;
+    const bool reference_first = repetition++ % 2 == 0;
+    for (const bool reference : {reference_first, !reference_first}) {
+      const Stopwatch stopwatch;
+      RunPipeline(reference);
+      AlternatingSeconds(reference).push_back(stopwatch.Seconds());
+    }
+    return std::string();
+  };
+  c.score = [] {
+    const double reference = Median(AlternatingSeconds(true)), current = Median(AlternatingSeconds(false));
+    std::string pairs;
+    for (std::size_t i = 0; i < AlternatingSeconds(true).size(); ++i)
+      pairs += (i ? " " : "") + Fixed(AlternatingSeconds(false)[i] / AlternatingSeconds(true)[i], 2);
+    return "reference " + Fixed(reference, 2) + " s, this build " + Fixed(current, 2) + " s: x" +
+           Fixed(current / reference, 2) + " (pair by pair: " + pairs + ")";
+  };
+  return c;
+}
+
 LFSP_BENCH_CASE {
   BenchCase c;
   c.stage = "chain";
