@@ -9,7 +9,7 @@ CMAKE_FLAGS ?=
 FUZZ_BUILD ?= build-fuzz
 FUZZ_RUNS ?= 1000000
 
-.PHONY: all demo test bench package fuzz build configure bootstrap format clean
+.PHONY: all demo test bench reference package fuzz build configure bootstrap format clean
 
 all: build
 
@@ -30,8 +30,12 @@ demo: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 
-bench: build
+# The chain rows (bench/chain_bench.cc) time this build beside a reference build of the commit in bench/REFERENCE.
+bench: build reference
 	@$(BUILD)/bench/lfsp_bench
+
+reference:
+	@JOBS=$(JOBS) tools/build_reference $(BUILD)
 
 # The Debian package (CPack, cmake/LfspPackaging.cmake): the command, man pages, Python module, workflow, samples.
 package: build

@@ -29,6 +29,8 @@ struct BenchCase {
   double baseline_scale = 1.0;
   int repetitions = 5;
   bool needs_shared_data = false;
+  // Optional: why the case cannot run here ("" when it can), e.g. no reference build; it is then listed as skipped.
+  std::function<std::string()> unavailable;
 };
 
 // Called at static-initialisation time by LFSP_BENCH_CASE in each bench/<stage>_bench.cc.
@@ -41,6 +43,16 @@ std::string SharedDataDir();
 // Runs `lfsp -q <arguments>` (the executable of this build) with `environment` ("NAME=value ...", shell syntax)
 // before it, its output discarded; throws if it fails.
 void RunLfsp(const std::string& arguments, const std::string& environment = "");
+
+// The same with another `lfsp` executable, e.g. the reference build (ReferenceLfsp).
+void RunLfspBinary(const std::string& binary, const std::string& arguments, const std::string& environment = "");
+
+// The reference build's `lfsp` (issue 46: ratios against today's binary in the same run): $LFSP_BENCH_REFERENCE,
+// else the one `make reference` builds (LFSP_REFERENCE_BINARY); "" when neither exists.
+std::string ReferenceLfsp();
+
+// The quality figures of a `lfsp pipeline` run folder, from its summary.json (apps_bench.cc).
+std::string PipelineFigures(const std::filesystem::path& out);
 
 // The full-size simulated capture (.LFR for "illum", .lfp for "f01") of a built-in scene, with its white images and
 // ground truth, made once in the temporary folder and reused by every case and later runs.

@@ -10,9 +10,20 @@ namespace lfsp::bench {
 
 namespace fs = std::filesystem;
 
-void RunLfsp(const std::string& arguments, const std::string& environment) {
-  const std::string command = environment + std::string(LFSP_BINARY_PATH) + " -q " + arguments + " > /dev/null";
+void RunLfspBinary(const std::string& binary, const std::string& arguments, const std::string& environment) {
+  const std::string command = environment + binary + " -q " + arguments + " > /dev/null";
   if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
+}
+
+void RunLfsp(const std::string& arguments, const std::string& environment) {
+  RunLfspBinary(LFSP_BINARY_PATH, arguments, environment);
+}
+
+std::string ReferenceLfsp() {
+  const char* configured = std::getenv("LFSP_BENCH_REFERENCE");
+  const std::string path = configured && *configured ? configured : LFSP_REFERENCE_BINARY;
+  std::error_code ec;
+  return fs::is_regular_file(path, ec) ? path : "";
 }
 
 fs::path FullSizeCapture(const std::string& camera, const std::string& scene) {

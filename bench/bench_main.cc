@@ -144,9 +144,13 @@ int main(int argc, char** argv) {
     const std::string full_name = bench_case.stage + "/" + bench_case.name;
     if (!filter.empty() && full_name.find(filter) == std::string::npos) continue;
     CaseResult result;
+    const std::string unavailable = bench_case.unavailable ? bench_case.unavailable() : "";
     if (bench_case.needs_shared_data && shared.empty()) {
       result.skipped = true;
       result.message = "skipped: ../shared/data not found";
+    } else if (!unavailable.empty()) {
+      result.skipped = true;
+      result.message = "skipped: " + unavailable;
     } else {
       try {
         if (bench_case.setup) bench_case.setup();

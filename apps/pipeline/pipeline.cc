@@ -9,6 +9,7 @@
 #include "input_loading.h"
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stats.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/container_info.h"
@@ -34,10 +35,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Runs the stages in order, logging "[i/n] name" and recording each stage's wall time.
+// Runs the stages in order, logging "[i/n] name" and recording each stage's wall time, and the process's resident
+// and peak memory at its end (MB) into `memory`.
 class StageRunner {
  public:
-  StageRunner(int stage_count, nlohmann::ordered_json& timings) : count_(stage_count), timings_(timings) {}
+  StageRunner(int stage_count, nlohmann::ordered_json& timings, nlohmann::ordered_json& memory)
+      : count_(stage_count), timings_(timings), memory_(memory) {}
 
   template <typename Work>
   auto Run(const std::string& name, Work work) {
@@ -47,7 +50,10 @@ class StageRunner {
       StageRunner* runner;
       std::string name;
       Stopwatch stopwatch;
-      ~Record() { runner->timings_[name] = stopwatch.Seconds(); }
+      ~Record() {
+        runner->timings_[name] = stopwatch.Seconds();
+        runner->memory_[name] = {{"resident_mb", ResidentMegabytes()}, {"peak_resident_mb", PeakResidentMegabytes()}};
+      }
     } record{this, name, {}};
     return work();
   }
@@ -56,6 +62,7 @@ class StageRunner {
   int count_;
   int index_ = 0;
   nlohmann::ordered_json& timings_;
+  nlohmann::ordered_json& memory_;
 };
 
 // The output folder is marked as a pipeline run so a later run may replace its files, while a user's unrelated
@@ -146,7 +153,10 @@ bool IsRawCapture(const fs::path& input, const PipelineOptions& options) {
 Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohmann::ordered_json& summary,
                     std::optional<TruthComparison>& truth_comparison) {
   Bundle bundle;
-  if (IsRawCapture(input, options)) {
+  Stopwatch step;
+  const bool raw = IsRawCapture(input, options);
+  nlohmann::ordered_json steps;  // the stage's steps' seconds, into summary["step_seconds"]["decode" or "load"]
+  if (raw) {
     decode::CaptureDecodeOptions decode_options;
     decode_options.white_images = options.white_images;
     decode_options.no_white_image = options.no_white_image;
@@ -155,13 +165,19 @@ Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohm
     stages::DecodeStageResult decoded = stages::RunDecodeStage(input, decode_options);
     bundle = std::move(decoded.bundle);
     summary["decode"] = std::move(decoded.summary);
+    steps["decode"] = step.Lap();
+    // A simulated capture's truth is read and compared here, inside the stage: what it costs is reported apart.
     truth_comparison = AttachSimulatorGroundTruth(input, bundle);
+    steps["ground_truth"] = step.Lap();
   } else {
     bundle = cli::LoadInput(input);
     RoundToStoredPrecision(bundle.light_field, CompactBundleOptions(bundle.light_field).storage);
+    steps["load"] = step.Lap();
   }
   // The light field is stored once, in segmentation.h5, after the views to process are chosen.
   summary["views"] = cli::SelectViews(bundle, options.views, input.string());
+  steps["select_views"] = step.Lap();
+  summary["step_seconds"][raw ? "decode" : "load"] = steps;
   summary["light_field"] = ToString(bundle.light_field.shape());
   return bundle;
 }
@@ -250,7 +266,8 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   summary["input"] = input.string();
   summary["output"] = options.out.string();
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
-  StageRunner stages(recolor ? 7 : 6, timings);
+  nlohmann::ordered_json memory = nlohmann::ordered_json::object();
+  StageRunner stages(recolor ? 7 : 6, timings, memory);
 
   std::optional<TruthComparison> truth_comparison;
   Bundle bundle = stages.Run(IsRawCapture(input, options) ? "decode" : "load",
@@ -319,6 +336,7 @@ PipelineResult RunPipeline(const PipelineOptions& options) {
   summary["metrics"] = metrics;
   summary["output_bytes"] = OutputSizes(work);
   summary["timings"] = timings;
+  summary["memory"] = memory;
   summary["wall_seconds"] = wall.Seconds();
   stages::WriteJsonSummary(summary, work / "summary.json");
   run.Commit();

@@ -1,6 +1,7 @@
 #include "stages/decode_stage.h"
 
 #include "lfsp/core/load.h"
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stopwatch.h"
 #include "stages/summary.h"
 
@@ -13,13 +14,16 @@ DecodeStageResult RunDecodeStage(const std::filesystem::path& capture, const dec
   result.bundle.light_field = std::move(decoded.light_field);
   result.summary = std::move(decoded.summary);
   LightField& light_field = result.bundle.light_field;
+  Stopwatch step;
   RoundToStoredPrecision(light_field, CompactBundleOptions(light_field).storage);
+  result.summary["seconds"]["round_to_storage"] = step.Lap();
   if (out.empty()) return result;
 
-  const Stopwatch write;
   SaveLightField(result.bundle, out, bit_depth);
   result.summary["output"] = out.string();
-  result.summary["seconds"]["write"] = write.Seconds();
+  result.summary["seconds"]["write"] = step.Lap();
+  result.summary["resident_mb"]["write"] = ResidentMegabytes();
+  result.summary["peak_resident_mb"]["write"] = PeakResidentMegabytes();
   if (extra.is_object()) result.summary.update(extra);
   WriteJsonSummary(result.summary, SummaryPathFor(out));
   return result;

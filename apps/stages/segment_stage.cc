@@ -80,6 +80,7 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
   const LightFieldShape shape = light_field.shape();
   const int row = options.epi_row >= 0 ? options.epi_row : shape.height / 2;
   const int column = options.epi_column >= 0 ? options.epi_column : shape.width / 2;
+  const Stopwatch write;  // the overlays, the planes and the bundle
   const fs::path planes_path = Beside(out, ".planes.json");
   const fs::path centre_path = Beside(out, ".overlay_centre.png");
   const fs::path epi_h_path = Beside(out, ".overlay_epi_h.png");
@@ -97,6 +98,7 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
   // The parameters travel with the labels: `lfsp evaluate segmentation` re-runs its refocus sweep with them.
   light_field.metadata["lfsp_segment"] = segment::SegmentationRecord(options.params, disparity_source);
   WriteLabelledBundle(light_field, disparity, lfsp.labels, out);
+  const double write_seconds = write.Seconds();
 
   summary["disparity"] = disparity_source;
   summary["shape"] = ToString(shape);
@@ -125,6 +127,7 @@ SegmentStageResult RunSegmentStage(LightField& light_field, const DisparityMap& 
                                 {"refine_planes", lfsp.timings.plane_seconds},
                                 {"carry", lfsp.timings.carry_seconds},
                                 {"segmentation", lfsp.timings.total_seconds},
+                                {"write", write_seconds},
                                 {"stage", stopwatch.Seconds()}};
   WriteJsonSummary(summary, SummaryPathFor(out));
   side_outputs.Complete();

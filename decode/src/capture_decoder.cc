@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/progress.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/given_grid.h"
@@ -84,7 +85,17 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     throw Error(capture_path.string() + ": a plain raw image needs " + OptionName("camera") +
                 " f01|illum to decode (sensor layout, optics and colour)");
   const LytroMetadata& metadata = input.metadata;
-  const double read_seconds = step.Lap();
+  // Each step's wall seconds, and the process's resident and peak memory after it (MB).
+  nlohmann::json seconds, resident, peak;
+  const auto lap = [&](const char* name) {
+    seconds[name] = step.Lap();
+    resident[name] = ResidentMegabytes();
+    peak[name] = PeakResidentMegabytes();
+  };
+  lap("read");
+  // Opening the file included unpacking its raw packing: reported apart.
+  seconds["read"] = seconds["read"].get<double>() - input.unpack_seconds;
+  seconds["unpack"] = input.unpack_seconds;
   Progress progress("decode", 3);  // white image, grid, decode; drawn only on a terminal
 
   // The white image: from the database, or (asked for, plain images, none found) estimated from the capture.
@@ -101,7 +112,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     if (!white)
       spdlog::warn("{}: {}; estimating the white image from the capture itself", capture_path.string(), estimate_why);
   }
-  const double white_seconds = step.Lap();
+  lap("white_image");
   progress.Tick();
 
   // The lenslet grid: given by the user, fitted on the white image (starting from its micro-lens description, or the
@@ -127,7 +138,8 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
   }
-  const double grid_seconds = step.Lap();
+  white->raw = RawImage{};  // prepared: the decode needs only its inverse and grey versions from here on
+  lap("white_preparation_and_grid");
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   const std::string fit = options.grid.empty() ? fmt::format(", fit rms {:.4f} px", estimate.grid.rms_residual) : "";
@@ -163,11 +175,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
                       {"height", shape.height},
                       {"transfer", ToString(result.light_field.transfer)}}},
                     {"decode", report.ToJson()},
-                    {"seconds",
-                     {{"read", read_seconds},
-                      {"white_image", white_seconds},
-                      {"white_preparation_and_grid", grid_seconds},
-                      {"total", total.Seconds()}}}};
+                    {"seconds", seconds},
+                    {"resident_mb", resident},
+                    {"peak_resident_mb", peak}};
+  result.summary["seconds"]["total"] = total.Seconds();
   return result;
 }
 

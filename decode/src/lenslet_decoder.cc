@@ -11,6 +11,7 @@
 #include "highlights.h"
 #include "lenslet_slicing.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lattice_pattern.h"
@@ -158,7 +159,9 @@ nlohmann::json DecodeReport::ToJson() const {
           {"centre_bands", {{"chroma", centre_bands[0]}, {"luma", centre_bands[1]}}},
           {"lattice_gain", LatticeGainJson(lattice_gain)},
           {"seconds", seconds},
-          {"cpu_seconds", cpu_seconds}};
+          {"cpu_seconds", cpu_seconds},
+          {"resident_mb", resident_mb},
+          {"peak_resident_mb", peak_resident_mb}};
 }
 
 PreparedWhite PrepareWhite(const RawImage& white, const LytroMetadata& white_metadata, ColourMode colour,
@@ -199,9 +202,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report = {};
   out_report.demosaic = std::string(ToString(options.demosaic));
   out_report.colour = std::string(ToString(options.colour));
-  // Wall and CPU seconds of each step into the report (the CPU time shows how well a step uses the cores).
+  // Wall and CPU seconds of each step into the report (the CPU time shows how well a step uses the cores), and the
+  // memory the process holds after it (where the peak comes from).
   Stopwatch stopwatch;
-  const auto lap = [&](const char* step) { out_report.seconds[step] = stopwatch.Lap(&out_report.cpu_seconds[step]); };
+  const auto lap = [&](const char* step) {
+    out_report.seconds[step] = stopwatch.Lap(&out_report.cpu_seconds[step]);
+    out_report.resident_mb[step] = ResidentMegabytes();
+    out_report.peak_resident_mb[step] = PeakResidentMegabytes();
+  };
   CheckSize(capture, grid.sensor_width, grid.sensor_height, capture_metadata.source);
   if (white.inverse.cols != grid.sensor_width || white.inverse.rows != grid.sensor_height ||
       white.grey.size() != white.inverse.size())
@@ -215,8 +223,27 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                 " differs from the capture's " + std::string(ToString(capture_format.mosaic)));
   const DecodedGeometry geometry = DecodedGeometryFor(grid);
 
-  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others prepare the
-  // sensor image: the fill is serial, the steps below are parallel.
+  // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
+  const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
+  cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
+                                     options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
+                                     out_report.hot_pixels_corrected, out_report.clipped_samples);
+  // What the steps before the decode freed (the white database's reads, the grid fit's images) goes back first.
+  ReturnFreedMemory();
+  lap("levels_hot_pixels_devignette");
+
+  // 2. Demosaic.
+  const cv::Mat lens_labels = LensLabels(grid);
+  const MicroImages micro_images{white.grey, lens_labels};
+  cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
+  bayer.release();
+  // The Bayer image and the demosaic's own buffers are free: their pages go back before the light field fills up.
+  ReturnFreedMemory();
+  lap("demosaic");
+
+  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others measure the
+  // exposure: the fill is serial, that step parallel. Not earlier: beside the demosaic's sensor-size buffers it
+  // made the decode's peak (issue 46).
   LightFieldShape shape;
   shape.nu = shape.nv = geometry.views;
   shape.width = geometry.width;
@@ -228,30 +255,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
     return allocated;
   });
 
-  // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
-  const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
-  cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
-                                     options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
-                                     out_report.hot_pixels_corrected, out_report.clipped_samples);
-  lap("levels_hot_pixels_devignette");
-
-  // 2. Demosaic.
-  const cv::Mat lens_labels = LensLabels(grid);
-  const MicroImages micro_images{white.grey, lens_labels};
-  cv::Mat rgb = Demosaic(bayer, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
-  bayer.release();
-  lap("demosaic");
-
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
   //    never clipped: the whole light field is darkened instead).
   RayColour colour;
   const std::array<double, 3> balance =
       ResolveWhiteBalance(options, capture_metadata, rgb, white.grey, out_report.white_balance);
-  if (out_report.clipped_samples > 0) {
-    // What a sensor clipped everywhere would decode to: each channel's ceiling at each pixel.
-    const cv::Mat ceilings = Demosaic(white.inverse, capture_format.mosaic, options.demosaic, 4.0f, &micro_images);
-    out_report.highlights_neutralised = NeutraliseClippedHighlights(rgb, ceilings, balance, kClippedLevel);
-  }
+  if (out_report.clipped_samples > 0)
+    out_report.highlights_neutralised =
+        NeutraliseClippedHighlights(rgb, white.inverse, capture_format.mosaic, balance, kClippedLevel);
   colour.matrix = ColourMatrix(capture_metadata, options.colour, balance);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
@@ -273,6 +284,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   out_report.row_alternation = RowAlternationRatio(light_field);
   const ViewIndex centre = light_field.shape().Centre();
   out_report.centre_bands = {ChromaBandRatio(light_field, centre), LumaBandRatio(light_field, centre)};
+  lap("view_quality");
 
   light_field.metadata["decode"] = {{"source", capture_metadata.source},
                                     {"white_image", white.source},

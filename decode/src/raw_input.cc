@@ -12,6 +12,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
+#include "lfsp/core/stopwatch.h"
 #include "lfsp/decode/jpeg_mosaic.h"
 #include "lfsp/decode/lytro_capture.h"
 
@@ -224,7 +225,9 @@ RawInput OpenRawInput(const std::filesystem::path& path, const PlainRawOptions& 
   input.path = path;
   input.format = capture.format;
   input.metadata = *capture.metadata;
+  const Stopwatch unpack;
   input.raw = capture.ReadRawImage();
+  input.unpack_seconds = unpack.Seconds();
   input.white_image = capture.IsWhiteImage();
   input.has_camera_metadata = true;
   input.levels = "the file's metadata";

@@ -68,9 +68,11 @@ struct DecodeReport {
   double row_alternation = 0.0;     // RowAlternationRatio of the result (~1 clean, > 2 striped)
   // ChromaBandRatio and LumaBandRatio of the centre view (view_bands.h: clean decodes read 1.8-2.9)
   std::array<double, 2> centre_bands = {0.0, 0.0};
-  std::optional<LatticeGainReport> lattice_gain;  // what FlattenLatticeGain found; none when it did not run
-  std::map<std::string, double> seconds;          // wall time per step
-  std::map<std::string, double> cpu_seconds;      // CPU time per step, all threads
+  std::optional<LatticeGainReport> lattice_gain;   // what FlattenLatticeGain found; none when it did not run
+  std::map<std::string, double> seconds;           // wall time per step
+  std::map<std::string, double> cpu_seconds;       // CPU time per step, all threads
+  std::map<std::string, double> resident_mb;       // the process's resident memory at the end of each step
+  std::map<std::string, double> peak_resident_mb;  // the process's peak resident memory up to the end of each step
   nlohmann::json ToJson() const;
 };
 
