@@ -261,8 +261,8 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   const std::array<double, 3> balance =
       ResolveWhiteBalance(options, capture_metadata, rgb, white.grey, out_report.white_balance);
   if (out_report.clipped_samples > 0)
-    out_report.highlights_neutralised =
-        NeutraliseClippedHighlights(rgb, white.inverse, capture_format.mosaic, balance, kClippedLevel);
+    out_report.highlights_neutralised = NeutraliseClippedHighlights(
+        rgb, white.inverse, capture_format.mosaic, options.demosaic, micro_images, balance, kClippedLevel);
   colour.matrix = ColourMatrix(capture_metadata, options.colour, balance);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
