@@ -102,6 +102,20 @@ class Taps {
   float value_[4][4]{};
 };
 
+// The bilinear sample with weights `w` of the taps at (x0, y0) .. (x0 + 1, y0 + 1), one or two of them under
+// another lens (Taps). Kept out of line: it is rare, and inlined it slowed the common path.
+[[gnu::noinline]] void SampleCompleted(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& labels,
+                                       std::uint8_t lens, int x0, int y0, const float* w, float* colour, float* white) {
+  Taps taps(rgb, grey, labels, lens, x0, y0);
+  taps.Complete();
+  const float* a = taps.Value(0);
+  const float* b = taps.Value(1);
+  const float* c = taps.Value(2);
+  const float* d = taps.Value(3);
+  for (int k = 0; k < 3; ++k) colour[k] = w[0] * a[k] + w[1] * b[k] + w[2] * c[k] + w[3] * d[k];
+  *white = w[0] * a[3] + w[1] * b[3] + w[2] * c[3] + w[3] * d[3];
+}
+
 // Bilinear samples of the RGB image and the grey white image at the same sensor point (x, y), clamped to the
 // image: the position, the 4 weights and the addresses are computed once for both. Taps under another micro-lens
 // than `lens` are extrapolated from those under it (Taps): the outer views' samples lie within 1.5 px of the
@@ -112,26 +126,31 @@ inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& l
   y = std::clamp(y, 0.0, rgb.rows - 1.0001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const auto fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};  // taps 00, 01, 10, 11
   const std::uint8_t* l = labels.ptr<std::uint8_t>(y0) + x0;
   const std::uint8_t* m = labels.ptr<std::uint8_t>(y0 + 1) + x0;
   if ((l[0] != lens) | (l[1] != lens) | (m[0] != lens) | (m[1] != lens)) {
-    Taps taps(rgb, grey, labels, lens, x0, y0);
-    taps.Complete();
-    const float* a = taps.Value(0);
-    const float* b = taps.Value(1);
-    const float* c = taps.Value(2);
-    const float* d = taps.Value(3);
-    for (int k = 0; k < 3; ++k) colour[k] = w00 * a[k] + w01 * b[k] + w10 * c[k] + w11 * d[k];
-    *white = w00 * a[3] + w01 * b[3] + w10 * c[3] + w11 * d[3];
-    return;
+    const bool kept[4] = {l[0] == lens, l[1] == lens, m[0] == lens, m[1] == lens};
+    const int count = kept[0] + kept[1] + kept[2] + kept[3];
+    if (count == 3) {
+      // The common case at the rim, without reading anything more: the missing tap's value is its two neighbours
+      // minus the opposite tap (Taps), so its weight moves onto those three.
+      const int missing = !kept[0] ? 0 : !kept[1] ? 1 : !kept[2] ? 2 : 3;
+      w[missing ^ 1] += w[missing];
+      w[missing ^ 2] += w[missing];
+      w[missing ^ 3] -= w[missing];
+      w[missing] = 0.0f;
+    } else if (count > 0) {
+      SampleCompleted(rgb, grey, labels, lens, x0, y0, w, colour, white);
+      return;
+    }
   }
   const float* p = rgb.ptr<float>(y0) + 3 * x0;
   const float* q = rgb.ptr<float>(y0 + 1) + 3 * x0;
-  for (int c = 0; c < 3; ++c) colour[c] = w00 * p[c] + w01 * p[3 + c] + w10 * q[c] + w11 * q[3 + c];
+  for (int c = 0; c < 3; ++c) colour[c] = w[0] * p[c] + w[1] * p[3 + c] + w[2] * q[c] + w[3] * q[3 + c];
   const float* g = grey.ptr<float>(y0) + x0;
   const float* h = grey.ptr<float>(y0 + 1) + x0;
-  *white = w00 * g[0] + w01 * g[1] + w10 * h[0] + w11 * h[1];
+  *white = w[0] * g[0] + w[1] * g[1] + w[2] * h[0] + w[3] * h[1];
 }
 
 // The exposure is set from this quantile of the brightest channel of well-lit rays, not from the single brightest:
