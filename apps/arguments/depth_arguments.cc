@@ -89,6 +89,14 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::Range(-1.0, 10.0));
   command
+      ->add_option("--sub-label-radius", method.sub_label.radius,
+                   "Where the semi-global penalty saturates the labels next to the best one (textured surfaces, "
+                   "whose aggregated cost's parabola read fronto-parallel strips up to a third of a label step "
+                   "towards their nearest label), the sub-label offset comes from the data cost summed over a window "
+                   "of this radius, weighted by colour similarity; 0 = the aggregated cost's parabola everywhere")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
       ->add_option("--median-radius", method.median.radius,
                    "Weighted-median refinement radius (0 = off, the wide window too)")
       ->capture_default_str()

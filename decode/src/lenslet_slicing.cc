@@ -13,36 +13,144 @@ namespace {
 
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 
+// The four bilinear taps at (x0, y0) .. (x0 + 1, y0 + 1) of the RGB image and the grey white image, 4 values each
+// (R, G, B, white). A tap under another micro-lens than `lens` (LensLabels) sees another part of the scene, so its
+// value is replaced by a linear extrapolation from the taps under this lens (and, where only one row or column of
+// taps is, from the pixels one step further in). Leaving such a tap out and renormalising the rest, as the slicing
+// did before, moves the sample towards the lens centre, that is, towards the centre view: the F01's corner views
+// ((+-3, +-3) of the central 7x7, 4.2 px out, whose outer diagonal tap often lies across the cell boundary at
+// 5.1 px) were sampled 1.5-2 % of their offset inwards, which read every strip of e2e/full_size 0.3-0.5 % closer to
+// d = 0. Extrapolation is exact for a linear signal, so it keeps the sample where it is. Where the pixels further in
+// are not under the lens either, the missing tap takes its neighbour's value (the old behaviour).
+class Taps {
+ public:
+  Taps(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& labels, std::uint8_t lens, int x0, int y0)
+      : rgb_(rgb), grey_(grey), labels_(labels), lens_(lens), x0_(x0), y0_(y0) {
+    for (int k = 0; k < 4; ++k) {
+      const int dx = k & 1, dy = k >> 1;
+      kept_[k] = Inside(dx, dy);
+      Read(dx, dy, value_[k]);
+    }
+  }
+
+  // Fills in the taps under other lenses. When none is under this lens, the values are left as read.
+  void Complete() {
+    const int count = kept_[0] + kept_[1] + kept_[2] + kept_[3];
+    if (count == 4 || count == 0) return;
+    if (count == 3) {
+      // The plane through the other three: missing = its two neighbours - the opposite tap.
+      const int missing = !kept_[0] ? 0 : !kept_[1] ? 1 : !kept_[2] ? 2 : 3;
+      for (int c = 0; c < 4; ++c)
+        value_[missing][c] = value_[missing ^ 1][c] + value_[missing ^ 2][c] - value_[missing ^ 3][c];
+      return;
+    }
+    if (count == 2 && kept_[0] == kept_[1]) {  // one row kept: extrapolate across the rows
+      const int row = kept_[0] ? 0 : 1, beyond = row == 0 ? -1 : 2;
+      for (int dx = 0; dx < 2; ++dx) Extend(dx + 2 * row, dx, beyond, dx + 2 * (1 - row));
+      return;
+    }
+    if (count == 2 && kept_[0] == kept_[2]) {  // one column kept: extrapolate across the columns
+      const int column = kept_[0] ? 0 : 1, beyond = column == 0 ? -1 : 2;
+      for (int dy = 0; dy < 2; ++dy) Extend(column + 2 * dy, beyond, dy, (1 - column) + 2 * dy);
+      return;
+    }
+    if (count == 2) {  // two diagonal taps: the missing ones take their mean (the plane without a cross slope)
+      const int a = kept_[0] ? 0 : 1;
+      for (int c = 0; c < 4; ++c) value_[a ^ 1][c] = value_[a ^ 2][c] = 0.5f * (value_[a][c] + value_[a ^ 3][c]);
+      return;
+    }
+    // One tap: extrapolate along each axis from the pixels further in, then the plane through the three.
+    const int kept = kept_[0] ? 0 : kept_[1] ? 1 : kept_[2] ? 2 : 3;
+    const int dx = kept & 1, dy = kept >> 1;
+    Extend(kept, dx == 0 ? -1 : 2, dy, kept ^ 1);
+    Extend(kept, dx, dy == 0 ? -1 : 2, kept ^ 2);
+    for (int c = 0; c < 4; ++c) value_[kept ^ 3][c] = value_[kept ^ 1][c] + value_[kept ^ 2][c] - value_[kept][c];
+  }
+
+  const float* Value(int k) const { return value_[k]; }
+
+ private:
+  bool Inside(int dx, int dy) const {
+    const int x = x0_ + dx, y = y0_ + dy;
+    return x >= 0 && y >= 0 && x < labels_.cols && y < labels_.rows && labels_.at<std::uint8_t>(y, x) == lens_;
+  }
+  void Read(int dx, int dy, float* out) const {
+    const float* p = rgb_.ptr<float>(y0_ + dy) + 3 * (x0_ + dx);
+    out[0] = p[0];
+    out[1] = p[1];
+    out[2] = p[2];
+    out[3] = grey_.at<float>(y0_ + dy, x0_ + dx);
+  }
+  // Tap `to` = 2 x tap `from` - the pixel at (bx, by) beyond `from`, or tap `from` where that pixel is not under
+  // this lens.
+  void Extend(int from, int bx, int by, int to) {
+    if (Inside(bx, by)) {
+      float beyond[4];
+      Read(bx, by, beyond);
+      for (int c = 0; c < 4; ++c) value_[to][c] = 2.0f * value_[from][c] - beyond[c];
+    } else {
+      for (int c = 0; c < 4; ++c) value_[to][c] = value_[from][c];
+    }
+  }
+
+  const cv::Mat& rgb_;
+  const cv::Mat& grey_;
+  const cv::Mat& labels_;
+  std::uint8_t lens_;
+  int x0_, y0_;
+  bool kept_[4]{};
+  float value_[4][4]{};
+};
+
+// The bilinear sample with weights `w` of the taps at (x0, y0) .. (x0 + 1, y0 + 1), one or two of them under
+// another lens (Taps). Kept out of line: it is rare, and inlined it slowed the common path.
+[[gnu::noinline]] void SampleCompleted(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& labels,
+                                       std::uint8_t lens, int x0, int y0, const float* w, float* colour, float* white) {
+  Taps taps(rgb, grey, labels, lens, x0, y0);
+  taps.Complete();
+  const float* a = taps.Value(0);
+  const float* b = taps.Value(1);
+  const float* c = taps.Value(2);
+  const float* d = taps.Value(3);
+  for (int k = 0; k < 3; ++k) colour[k] = w[0] * a[k] + w[1] * b[k] + w[2] * c[k] + w[3] * d[k];
+  *white = w[0] * a[3] + w[1] * b[3] + w[2] * c[3] + w[3] * d[3];
+}
+
 // Bilinear samples of the RGB image and the grey white image at the same sensor point (x, y), clamped to the
 // image: the position, the 4 weights and the addresses are computed once for both. Taps under another micro-lens
-// than `lens` (LensLabels) are left out and the rest renormalised: the outer views' samples lie within 1.5 px of
-// the boundary with the next lens, whose micro-image sees another part of the scene.
+// than `lens` are extrapolated from those under it (Taps): the outer views' samples lie within 1.5 px of the
+// boundary with the next lens, whose micro-image sees another part of the scene.
 inline void SampleBoth(const cv::Mat& rgb, const cv::Mat& grey, const cv::Mat& labels, std::uint8_t lens, double x,
                        double y, float* colour, float* white) {
   x = std::clamp(x, 0.0, rgb.cols - 1.0001);
   y = std::clamp(y, 0.0, rgb.rows - 1.0001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const auto fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-  float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};  // taps 00, 01, 10, 11
   const std::uint8_t* l = labels.ptr<std::uint8_t>(y0) + x0;
   const std::uint8_t* m = labels.ptr<std::uint8_t>(y0 + 1) + x0;
   if ((l[0] != lens) | (l[1] != lens) | (m[0] != lens) | (m[1] != lens)) {
-    const float kept = (l[0] == lens ? w00 : 0.0f) + (l[1] == lens ? w01 : 0.0f) + (m[0] == lens ? w10 : 0.0f) +
-                       (m[1] == lens ? w11 : 0.0f);
-    if (kept > 0.0f) {
-      const float scale = 1.0f / kept;
-      w00 = l[0] == lens ? w00 * scale : 0.0f;
-      w01 = l[1] == lens ? w01 * scale : 0.0f;
-      w10 = m[0] == lens ? w10 * scale : 0.0f;
-      w11 = m[1] == lens ? w11 * scale : 0.0f;
+    const bool kept[4] = {l[0] == lens, l[1] == lens, m[0] == lens, m[1] == lens};
+    const int count = kept[0] + kept[1] + kept[2] + kept[3];
+    if (count == 3) {
+      // The common case at the rim, without reading anything more: the missing tap's value is its two neighbours
+      // minus the opposite tap (Taps), so its weight moves onto those three.
+      const int missing = !kept[0] ? 0 : !kept[1] ? 1 : !kept[2] ? 2 : 3;
+      w[missing ^ 1] += w[missing];
+      w[missing ^ 2] += w[missing];
+      w[missing ^ 3] -= w[missing];
+      w[missing] = 0.0f;
+    } else if (count > 0) {
+      SampleCompleted(rgb, grey, labels, lens, x0, y0, w, colour, white);
+      return;
     }
   }
   const float* p = rgb.ptr<float>(y0) + 3 * x0;
   const float* q = rgb.ptr<float>(y0 + 1) + 3 * x0;
-  for (int c = 0; c < 3; ++c) colour[c] = w00 * p[c] + w01 * p[3 + c] + w10 * q[c] + w11 * q[3 + c];
+  for (int c = 0; c < 3; ++c) colour[c] = w[0] * p[c] + w[1] * p[3 + c] + w[2] * q[c] + w[3] * q[3 + c];
   const float* g = grey.ptr<float>(y0) + x0;
   const float* h = grey.ptr<float>(y0 + 1) + x0;
-  *white = w00 * g[0] + w01 * g[1] + w10 * h[0] + w11 * h[1];
+  *white = w[0] * g[0] + w[1] * g[1] + w[2] * h[0] + w[3] * h[1];
 }
 
 // The exposure is set from this quantile of the brightest channel of well-lit rays, not from the single brightest:

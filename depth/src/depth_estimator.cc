@@ -130,14 +130,19 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     AggregateLocally(cost, centre, options.aggregation_radius, options.aggregation_epsilon);
     lap("local_aggregation");
   }
-  CostVolume raw_cost;  // kept only for the plane fit's data support
+  CostVolume raw_cost;  // the data cost, kept for the sub-label offsets and the plane fit's data support
   if (options.regularise) {
     CostVolume aggregated = AggregateSemiGlobal(cost, centre, result.sgm);
-    if (options.plane_fit) raw_cost = std::move(cost);
+    if (options.plane_fit || options.sub_label.radius > 0) raw_cost = std::move(cost);
     cost = std::move(aggregated);
     lap("semi_global");
   }
   DisparityEstimate estimate = SelectDisparity(cost, disparities);
+  if (options.regularise) {
+    SubLabelOptions sub_label = options.sub_label;
+    sub_label.p1 = result.sgm.p1;
+    RefineSubLabelFromData(estimate.disparity, cost, raw_cost, disparities, centre, sub_label);
+  }
   lap("select");
   if (options.regularise && options.plane_fit) {
     const DisparityMap support = DataSupport(raw_cost, estimate.disparity, disparities);

@@ -49,6 +49,9 @@ nlohmann::json ToJson(const DepthOptions& options) {
                              {"colour_difference", options.thin_structures.colour_difference},
                              {"blend_difference", options.thin_structures.blend_difference}};
   json["sgm"] = {{"p1", options.sgm.p1}, {"p2", options.sgm.p2}, {"edge_sigma", options.sgm.edge_sigma}};
+  json["sub_label"] = {{"radius", options.sub_label.radius},
+                       {"sigma", options.sub_label.sigma},
+                       {"saturation", options.sub_label.saturation}};
   json["plane_fit"] = {{"enabled", options.plane_fit},
                        {"region_size", options.plane.region_size},
                        {"support_threshold", options.plane.support_threshold},

@@ -9,6 +9,7 @@
 
 #include "lfsp/core/error.h"
 #include "lfsp/depth/metrics.h"
+#include "lfsp/depth/sgm.h"
 
 namespace lfsp::depth {
 
@@ -98,6 +99,56 @@ DisparityEstimate SelectDisparity(const CostVolume& cost, const std::vector<floa
     }
   }
   return estimate;
+}
+
+void RefineSubLabelFromData(DisparityMap& disparity, const CostVolume& aggregated, const CostVolume& data,
+                            const std::vector<float>& disparities, const cv::Mat& guide_rgb,
+                            const SubLabelOptions& options) {
+  if (options.radius <= 0) return;
+  const int width = aggregated.width(), height = aggregated.height(), labels = aggregated.labels();
+  if (data.width() != width || data.height() != height || data.labels() != labels || disparity.width() != width ||
+      disparity.height() != height || static_cast<int>(disparities.size()) != labels)
+    throw Error("sub-label refinement: the cost volumes, the disparity map and the labels differ in size");
+  if (guide_rgb.type() != CV_32FC3 || guide_rgb.rows != height || guide_rgb.cols != width)
+    throw Error("sub-label refinement: the guide must be a float RGB image of the disparity map's size");
+  if (labels < 3) return;
+  const float step = disparities[1] - disparities[0];
+  const float inverse = 1.0f / (2.0f * options.sigma * options.sigma);
+  const int radius = options.radius;
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float* curve = aggregated.Curve(y, x);
+      const int best = static_cast<int>(std::min_element(curve, curve + labels) - curve);
+      if (best == 0 || best + 1 == labels) continue;
+      // What the paths add to a neighbouring label beyond the pixel's own data (SemiGlobalPaths copies of it):
+      // near saturation on either side, the aggregated curve there is the penalty's, not the neighbours' data.
+      const float* own = data.Curve(y, x) + best;
+      const float paths = static_cast<float>(SemiGlobalPaths());
+      const float added_below = (curve[best - 1] - curve[best]) - paths * (own[-1] - own[0]);
+      const float added_above = (curve[best + 1] - curve[best]) - paths * (own[1] - own[0]);
+      const float saturated = options.saturation * paths * options.p1;
+      if (!(added_below >= saturated || added_above >= saturated)) continue;
+      const cv::Vec3f centre = guide_rgb.at<cv::Vec3f>(y, x);
+      double below = 0.0, at = 0.0, above = 0.0;
+      for (int yy = std::max(0, y - radius); yy <= std::min(height - 1, y + radius); ++yy) {
+        const cv::Vec3f* row = guide_rgb.ptr<cv::Vec3f>(yy);
+        for (int xx = std::max(0, x - radius); xx <= std::min(width - 1, x + radius); ++xx) {
+          const cv::Vec3f difference = row[xx] - centre;
+          const double weight = std::exp(-difference.dot(difference) * inverse);
+          const float* q = data.Curve(yy, xx) + best;
+          below += weight * q[-1];
+          at += weight * q[0];
+          above += weight * q[1];
+        }
+      }
+      if (!(at <= below && at <= above)) continue;
+      const double rise = std::max(below, above) - at;
+      if (!(rise > 0.0)) continue;
+      const double offset = std::clamp(0.5 * (below - above) / rise, -0.5, 0.5);
+      disparity.at(y, x) = disparities[static_cast<std::size_t>(best)] + static_cast<float>(offset) * step;
+    }
+  }
 }
 
 void WeightedMedianRefine(DisparityMap& disparity, const cv::Mat& guide_rgb, const MedianOptions& options) {

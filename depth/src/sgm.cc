@@ -110,7 +110,8 @@ CostVolume AggregateSemiGlobal(const CostVolume& cost, const cv::Mat& guide, con
   }
   const PenaltyModel penalties(guide, options);
   CostVolume sum(cost.width(), cost.height(), cost.labels(), 0.0f);
-  constexpr int kDirections[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
+  constexpr int kDirections[SemiGlobalPaths()][2] = {{1, 0}, {-1, 0},  {0, 1},  {0, -1},
+                                                     {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
   for (const auto& direction : kDirections) AggregateDirection(cost, penalties, direction[0], direction[1], sum);
   return sum;
 }

@@ -41,6 +41,45 @@ TEST(SelectDisparity, ParabolaRefinementFindsTheTrueMinimumBetweenLabels) {
   EXPECT_FLOAT_EQ(SelectDisparity(flat, labels).confidence.at(0, 0), 0.0f);
 }
 
+// A textured fronto-parallel surface 0.375 label steps from a label: the truncated L1 data cost rises linearly on
+// both sides of the true minimum, and semi-global aggregation adds p1 per path to the labels next to the best one
+// whatever the offset. The parabola through the aggregated costs then lands much nearer the label; the equiangular
+// fit through the data cost summed over the window reads the truth.
+TEST(SubLabelFromData, ReadsAFrontoParallelSurfaceBetweenLabelsWhereTheAggregatedParabolaIsPulledToTheLabel) {
+  const std::vector<float> labels = LabelDisparities(-1.0f, 1.0f, 21);  // step 0.1
+  constexpr int kSize = 12;
+  constexpr float kMinimum = 7.375f;  // label units: disparity -0.2625
+  constexpr float kPenalty = 0.5f;    // p1 per path, 8 paths
+  CostVolume data(kSize, kSize, 21), aggregated(kSize, kSize, 21);
+  cv::Mat guide(kSize, kSize, CV_32FC3, cv::Scalar(0.4, 0.5, 0.3));
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const float slope = 0.5f + 0.05f * static_cast<float>((x * 7 + y * 3) % 5);  // texture varies by pixel
+      for (int l = 0; l < 21; ++l) {
+        const float c = slope * std::abs(static_cast<float>(l) - kMinimum);
+        data.Curve(y, x)[l] = c;
+        aggregated.Curve(y, x)[l] = 8.0f * c + (l == 7 ? 0.0f : 8.0f * kPenalty);
+      }
+    }
+  const float truth = -1.0f + 0.1f * kMinimum;
+  DisparityEstimate estimate = SelectDisparity(aggregated, labels);
+  EXPECT_GT(std::abs(estimate.disparity.at(5, 5) - truth), 0.01f);  // the pull this refinement removes
+  RefineSubLabelFromData(estimate.disparity, aggregated, data, labels, guide,
+                         SubLabelOptions{3, 0.05f, 0.75f, kPenalty});
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) EXPECT_NEAR(estimate.disparity.at(y, x), truth, 1e-4) << x << ", " << y;
+  // Off: the aggregated cost's parabola stays.
+  const float parabola = SelectDisparity(aggregated, labels).disparity.at(5, 5);
+  DisparityEstimate off = SelectDisparity(aggregated, labels);
+  RefineSubLabelFromData(off.disparity, aggregated, data, labels, guide, SubLabelOptions{0, 0.05f, 0.75f, kPenalty});
+  // Where the paths add less than the saturation (they carry the neighbours' data): the parabola stays too.
+  DisparityEstimate unsaturated = SelectDisparity(aggregated, labels);
+  RefineSubLabelFromData(unsaturated.disparity, aggregated, data, labels, guide,
+                         SubLabelOptions{3, 0.05f, 0.75f, 2.0f * kPenalty});
+  EXPECT_FLOAT_EQ(unsaturated.disparity.at(5, 5), parabola);
+  EXPECT_FLOAT_EQ(off.disparity.at(5, 5), parabola);
+}
+
 // A flat blue region beside a thin brown bar in front (2 px), whose disparity the semi-global pass spread over a
 // 14 x 14 block of the region: the fine window cannot outvote the block, the wide one does. The bar keeps its
 // disparity, and a textured slanted plane below (a slope the wide window would bias by more than 0.07 px) keeps

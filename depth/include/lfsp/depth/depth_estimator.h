@@ -30,7 +30,8 @@ struct DepthOptions {
   int aggregation_radius = 0;         // edge-aware (guided filter) cost aggregation before SGM (0 = off)
   float aggregation_epsilon = 1e-3f;  // guided filter regularisation (squared intensity units)
   SgmOptions sgm;
-  bool plane_fit = false;  // slanted-plane refinement of textureless pixels (see plane_fit.h)
+  SubLabelOptions sub_label;  // the sub-label offsets of the semi-global labels, from the data cost (refinement.h)
+  bool plane_fit = false;     // slanted-plane refinement of textureless pixels (see plane_fit.h)
   PlaneFitOptions plane;
   // Gaussian smoothing of every view before matching, pixels: < 0 = automatic (AutomaticPresmoothSigma: 0.6 px on
   // noisy views, none on clean ones), 0 = off.

@@ -29,4 +29,7 @@ SgmOptions PenaltiesForCost(const SgmOptions& options, const CostOptions& cost);
 // view of the cost volume's size.
 CostVolume AggregateSemiGlobal(const CostVolume& cost, const cv::Mat& guide, const SgmOptions& options);
 
+// How many scanline directions AggregateSemiGlobal sums: each data cost appears that many times in its output.
+constexpr int SemiGlobalPaths() { return 8; }
+
 }  // namespace lfsp::depth
