@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,12 @@ void RunLfspBinary(const std::string& binary, const std::string& arguments, cons
 // The reference build's `lfsp` (issue 46: ratios against today's binary in the same run): $LFSP_BENCH_REFERENCE,
 // else the one `make reference` builds (LFSP_REFERENCE_BINARY); "" when neither exists.
 std::string ReferenceLfsp();
+
+// A JSON file (a run's summary.json), parsed; throws if it is not JSON.
+nlohmann::json ReadJson(const std::filesystem::path& path);
+
+// `value` with `decimals` digits after the point, for the quality column.
+std::string Fixed(double value, int decimals);
 
 // The quality figures of a `lfsp pipeline` run folder, from its summary.json (apps_bench.cc).
 std::string PipelineFigures(const std::filesystem::path& out);

@@ -1,7 +1,10 @@
-// What several bench files share: running the `lfsp` executable, and the full-size simulated captures it makes.
+// What several bench files share: running the `lfsp` executable, the full-size simulated captures it makes, and
+// reading and printing the figures of its summaries.
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "bench_case.h"
@@ -9,6 +12,17 @@
 namespace lfsp::bench {
 
 namespace fs = std::filesystem;
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+std::string Fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
 
 void RunLfspBinary(const std::string& binary, const std::string& arguments, const std::string& environment) {
   const std::string command = environment + binary + " -q " + arguments + " > /dev/null";
