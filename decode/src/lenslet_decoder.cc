@@ -255,8 +255,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
     return allocated;
   });
 
-  // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (highlights are
-  //    never clipped: the whole light field is darkened instead).
+  // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (the decode clips no
+  //    highlight: the whole light field is darkened instead). What the sensor clipped has lost its colour and is
+  //    made neutral first (highlights.h).
   RayColour colour;
   const std::array<double, 3> balance =
       ResolveWhiteBalance(options, capture_metadata, rgb, white.grey, out_report.white_balance);
