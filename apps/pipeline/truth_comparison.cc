@@ -6,16 +6,12 @@
 
 #include <opencv2/core.hpp>
 
+#include "lfsp/core/channel_gains.h"
 #include "lfsp/core/visualize.h"
 #include "lfsp/depth/metrics.h"
 
 namespace lfsp::pipeline {
 namespace {
-
-float ToLinear(float value, Transfer transfer) {
-  if (transfer == Transfer::kLinear) return value;
-  return static_cast<float>(SrgbToLinear(value));
-}
 
 // Per pixel, the mean over channels of |gain_c * decoded - truth|, each channel's gain fitted by least squares.
 // Both are views of a light field: one contiguous CV_32FC3 block each, read in place.
@@ -23,20 +19,14 @@ cv::Mat CentreError(const cv::Mat& decoded, Transfer decoded_transfer, const cv:
   const int pixels = decoded.rows * decoded.cols;
   const float* a = decoded.ptr<float>();
   const float* b = truth.ptr<float>();
-  double cross[3] = {0, 0, 0}, square[3] = {0, 0, 0};
-  for (int i = 0; i < 3 * pixels; ++i) {
-    const double x = ToLinear(a[i], decoded_transfer), y = ToLinear(b[i], truth_transfer);
-    cross[i % 3] += x * y;
-    square[i % 3] += x * x;
-  }
-  double gain[3];
-  for (int c = 0; c < 3; ++c) gain[c] = square[c] > 0.0 ? cross[c] / square[c] : 1.0;
+  const std::array<double, 3> gain = FitChannelGains(decoded, decoded_transfer, truth, truth_transfer);
   cv::Mat error(decoded.rows, decoded.cols, CV_32FC1);
   float* e = error.ptr<float>();
   for (int p = 0; p < pixels; ++p) {
     double sum = 0.0;
     for (int c = 0; c < 3; ++c)
-      sum += std::abs(gain[c] * ToLinear(a[3 * p + c], decoded_transfer) - ToLinear(b[3 * p + c], truth_transfer));
+      sum += std::abs(gain[static_cast<std::size_t>(c)] * LinearSample(a[3 * p + c], decoded_transfer) -
+                      LinearSample(b[3 * p + c], truth_transfer));
     e[p] = static_cast<float>(sum / 3.0);
   }
   return error;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <complex>
 
+#include "lfsp/core/channel_gains.h"
 #include "lfsp/core/error.h"
-#include "lfsp/core/srgb.h"
 
 namespace lfsp::decode {
 namespace {
@@ -73,23 +73,13 @@ CentreFidelity CompareCentreWithTruth(const LightField& decoded, const LightFiel
   if (a.width != b.width || a.height != b.height || a.channels != 3 || b.channels != 3 || a.width <= 2 * border ||
       a.height <= 2 * border)
     throw Error("centre fidelity: decode and truth differ in view size or are not RGB");
-  const auto linear = [](const LightField& field, int y, int x, int c) {
-    const float value = field.at(field.shape().Centre(), y, x, c);
-    return field.transfer == Transfer::kLinear ? static_cast<double>(value) : SrgbToLinear(static_cast<double>(value));
-  };
-  std::array<double, 3> cross{}, square{};
-  for (int y = border; y < a.height - border; ++y)
-    for (int x = border; x < a.width - border; ++x)
-      for (int c = 0; c < 3; ++c) {
-        const double d = linear(decoded, y, x, c), t = linear(truth, y, x, c);
-        cross[static_cast<std::size_t>(c)] += d * t;
-        square[static_cast<std::size_t>(c)] += d * d;
-      }
+  const cv::Rect inside(border, border, a.width - 2 * border, a.height - 2 * border);
+  const cv::Mat decoded_view = decoded.View(a.Centre())(inside), truth_view = truth.View(b.Centre())(inside);
   CentreFidelity fidelity;
-  for (int c = 0; c < 3; ++c)
-    if (square[static_cast<std::size_t>(c)] > 0.0)
-      fidelity.gains[static_cast<std::size_t>(c)] =
-          cross[static_cast<std::size_t>(c)] / square[static_cast<std::size_t>(c)];
+  fidelity.gains = FitChannelGains(decoded_view, decoded.transfer, truth_view, truth.transfer);
+  const auto linear = [](const LightField& field, int y, int x, int c) {
+    return LinearSample(field.at(field.shape().Centre(), y, x, c), field.transfer);
+  };
   double squared = 0.0, chroma = 0.0;
   long long pixels = 0;
   for (int y = border; y < a.height - border; ++y)
