@@ -30,6 +30,14 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
+      ->add_option("--halves-agree", method.cost.halves_agree_labels,
+                   "Near an edge, where the two halves' best labels lie within N labels of each other no occluder "
+                   "hides the pixel and the whole patch stays; otherwise the half whose best label costs less "
+                   "replaces it; -1 = the lower envelope of the two halves (the rule before 2026-12-06, which read "
+                   "thin foreground bars nearer than they are)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 1024));
+  command
       ->add_option("--along-edge-penalty", method.cost.along_edge_penalty,
                    "Near an edge, the views along it replace the whole patch where their cost times this is lower "
                    "(sees into gaps between parallel occluders, e.g. a comb's teeth); 0 = off")

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 #include <string>
+#include <utility>
 
 #include "lfsp/core/conventions.h"
 #include "lfsp/core/error.h"
@@ -332,6 +333,45 @@ float CostRange(const CostOptions& options) {
   return options.colour_weight * options.colour_truncation + detail;
 }
 
+namespace {
+
+// Which part of the angular patch may stand in for the whole one at a pixel near an edge (the split's two halves).
+enum class HalfChoice { kNone, kHalfA, kHalfB, kLowerEnvelope };
+
+// An occluder hides the background in the views on its side of the edge only, so the two halves then prefer
+// different labels, and the one whose best label costs less is the one that sees the pixel.
+// `side_costs(l)` gives the two halves' mean costs at label l.
+template <typename SideCosts>
+HalfChoice ChooseHalf(int labels, int agree_labels, const SideCosts& side_costs) {
+  if (agree_labels < 0) return HalfChoice::kLowerEnvelope;
+  float best_a = std::numeric_limits<float>::infinity(), best_b = best_a;
+  int label_a = 0, label_b = 0;
+  for (int l = 0; l < labels; ++l) {
+    const auto [a, b] = side_costs(l);
+    if (a < best_a) best_a = a, label_a = l;
+    if (b < best_b) best_b = b, label_b = l;
+  }
+  if (std::abs(label_a - label_b) <= agree_labels) return HalfChoice::kNone;
+  return best_a <= best_b ? HalfChoice::kHalfA : HalfChoice::kHalfB;
+}
+
+// The chosen half's cost at one label, times `penalty`; infinite where no half may stand in.
+float HalfCost(HalfChoice choice, float side_a, float side_b, float penalty) {
+  switch (choice) {
+    case HalfChoice::kHalfA:
+      return penalty * side_a;
+    case HalfChoice::kHalfB:
+      return penalty * side_b;
+    case HalfChoice::kLowerEnvelope:
+      return penalty * std::min(side_a, side_b);
+    case HalfChoice::kNone:
+      break;
+  }
+  return std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
+
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
                            const CostOptions& options, const OcclusionMap* occlusion,
                            OcclusionAlternatives* alternatives) {
@@ -445,16 +485,22 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
               candidate != nullptr && candidate[x] != 0 && splits.views_a[split[x]] > 0 && splits.views_b[split[x]] > 0;
           float* half_curve = use_halves && alternatives ? alternatives->half.Curve(y, x) : nullptr;
           float* along_curve = use_halves && alternatives ? alternatives->along.Curve(y, x) : nullptr;
+          const auto side_costs = [&](int l) {
+            const int j = split[x];
+            const float total = row_of(totals, l, row)[x];
+            const float half_a = row_of(halves, l, row)[x];
+            return std::pair<float, float>(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
+          };
+          const HalfChoice choice =
+              use_halves ? ChooseHalf(labels, options.halves_agree_labels, side_costs) : HalfChoice::kNone;
           for (int l = 0; l < labels; ++l) {
             const float total = row_of(totals, l, row)[x];
             float cost = total / all_views;
             if (use_halves) {
-              // Near an edge: the background is occluded in the views on the occluder's side, so keep the
-              // better of the two halves split along the edge.
-              const int j = split[x];
-              const float half_a = row_of(halves, l, row)[x];
-              const float half = options.half_patch_penalty *
-                                 std::min(half_a / splits.views_a[j], (total - half_a) / splits.views_b[j]);
+              // Near an edge: the background is occluded in the views on the occluder's side, so the half split
+              // along the edge that sees the pixel may replace the whole patch (ChooseHalf).
+              const auto [side_a, side_b] = side_costs(l);
+              const float half = HalfCost(choice, side_a, side_b, options.half_patch_penalty);
               if (half_curve) half_curve[l] = half;
               if (!alternatives) cost = std::min(cost, half);
               // In a gap between two occluders (a comb's teeth, a fence) both halves hold an occluder, but the

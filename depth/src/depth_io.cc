@@ -36,6 +36,7 @@ nlohmann::json ToJson(const DepthOptions& options) {
                   {"colour_deadzone", options.cost.colour_deadzone},
                   {"colour_truncation", options.cost.colour_truncation},
                   {"half_patch_penalty", options.cost.half_patch_penalty},
+                  {"halves_agree_labels", options.cost.halves_agree_labels},
                   {"along_edge_penalty", options.cost.along_edge_penalty},
                   {"sampler", SamplerName(options.cost.sampler)}};
   json["occlusion"] = {{"canny_low", options.occlusion.canny_low},
