@@ -51,7 +51,7 @@ LFSP_BENCH_CASE {
   c.stage = "decode";
   c.name = "grid-capture-f01-real";
   c.input = "real F01 raw JPEG 3280x3280, no white image";
-  c.target = "<= 1 s; median <= 0.5 px, p95 <= 0.85 px";
+  c.target = "<= 1 s; median <= 0.45 px, p95 <= 0.75 px";
   c.repetitions = 5;
   c.needs_shared_data = true;
   c.prepare = PrepareFrame;

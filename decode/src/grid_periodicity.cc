@@ -1,8 +1,9 @@
 // Lenslet grid estimation from the lattice's periodicity: works on ordinary captures (scene content, dark and
 // saturated regions, JPEG blocking), where centroids of single micro-images are pulled by the scene.
 //
-// The micro-images repeat on a hexagonal lattice, so the image's local contrast has sharp spectral peaks at the six
-// first-ring reciprocal vectors; the scene does not. Three steps:
+// The micro-images repeat on a hexagonal lattice, so the image's local contrast (its dark side: the gaps between the
+// micro-images and the rims of their discs, which neither the scene nor the main lens's vignetting moves) has sharp
+// spectral peaks at the six first-ring reciprocal vectors; the scene does not. Three steps:
 //   1. the power spectrum of a central crop gives the reciprocal vectors coarsely (the three peaks 60 degrees apart
 //      with the most power: JPEG's 8-pixel blocking has no partners at 60 degrees);
 //   2. each block of about 12 x 12 lenses is demodulated at those vectors; the phase of each block says where the
@@ -34,6 +35,7 @@ using Complex = std::complex<double>;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 constexpr double kMinPeakContrast = 100.0;  // whitened power each first-ring peak of a lattice must reach
+const cv::Matx13f kBinomial3(0.25f, 0.5f, 0.25f);
 
 struct Frequency {
   double x = 0.0;  // cycles per pixel
@@ -49,10 +51,22 @@ struct Frequency {
 double Wrap(double phase) { return std::remainder(phase, kTwoPi); }
 
 // The image's local contrast, (I - local mean) / local mean over about two lens pitches: the lattice is then equally
-// strong in bright and dim regions. (What is left of the Bayer pattern sits at the Nyquist frequency, far from the
-// lattice's, so neither the spectrum nor the block demodulation sees it.)
+// strong in bright and dim regions.
+//
+// Only its dark side is kept (values above the local mean become 0): the gaps between the micro-images and the rims of
+// their discs, which the micro-lenses' edges fix. The bright inside of a disc carries what the lens sees, and away from
+// the optical axis the main lens's vignetting tilts it towards the axis (the real F01 frames' mean micro-image near the
+// sensor's edges is a few percent brighter on its inner side, its rim still centred): a lattice phase from the whole
+// disc then puts every lens a little towards the middle, more the further out, as a lattice 1e-4 too small (0.16 px
+// at the edges). From the dark side alone the frames' spacing matches the camera's centre table.
+//
+// The Bayer pattern goes first: a coloured scene leaves a checkerboard of bright and dark pixels inside the discs,
+// which the cut at the mean would turn from a Nyquist-frequency pattern (that neither the spectrum nor the block
+// demodulation sees) into dark specks that move the phase (IMG_3: 0.1 px). [1 2 1] / 4 along both axes has its
+// zero at the Nyquist frequency, keeps 88 % of the lattice's first ring and moves nothing.
 cv::Mat LocalContrast(const cv::Mat& grey, double spacing) {
-  const cv::Mat& smooth = grey;
+  cv::Mat smooth;
+  cv::sepFilter2D(grey, smooth, CV_32F, kBinomial3, kBinomial3, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
   const int box = 2 * static_cast<int>(std::lround(spacing)) + 1;
   cv::Mat local;
   cv::blur(smooth, local, cv::Size(box, box), cv::Point(-1, -1), cv::BORDER_REFLECT);
@@ -63,7 +77,7 @@ cv::Mat LocalContrast(const cv::Mat& grey, double spacing) {
     const float* s = smooth.ptr<float>(y);
     const float* m = local.ptr<float>(y);
     float* out = contrast.ptr<float>(y);
-    for (int x = 0; x < grey.cols; ++x) out[x] = std::clamp((s[x] - m[x]) / std::max(m[x], floor), -2.0f, 2.0f);
+    for (int x = 0; x < grey.cols; ++x) out[x] = std::clamp((s[x] - m[x]) / std::max(m[x], floor), -2.0f, 0.0f);
   }
   return contrast;
 }
@@ -391,8 +405,22 @@ HexLattice LatticeFromReciprocal(const Frequency& k1, const Frequency& k2, doubl
       along = candidate;
     }
   }
+  // The model's columns stand perpendicular to its rows; a real lattice's may lean a little (the F01's centre table and
+  // its frames: the columns 1.1e-4 rad off the rows' normal). The rows' angle alone would put all of that lean into the
+  // columns, whose ends then sit 0.18 px off at the top and bottom of the sensor; the mean of the two angles halves it
+  // at both. A column runs from a lens to the one two rows on: twice the step to its neighbour half a pitch ahead in
+  // the next row, minus the step along the row.
+  Eigen::Vector2d column(-along.y(), along.x());  // perpendicular, should no such neighbour be found
+  const double cell = std::abs(direct.determinant());
+  for (Eigen::Vector2d candidate : shortest) {
+    if (along.x() * candidate.y() - along.y() * candidate.x() < 0.0) candidate = -candidate;  // into the next row
+    if (along.x() * candidate.y() - along.y() * candidate.x() > 0.5 * cell && candidate.dot(along) > 0.0)
+      column = 2.0 * candidate - along;
+  }
+  const double row_angle = std::atan2(along.y(), along.x());
+  const double column_angle = std::atan2(column.y(), column.x()) - 0.5 * std::numbers::pi;
   HexLattice lattice;
-  lattice.rotation = std::atan2(along.y(), along.x());
+  lattice.rotation = row_angle + 0.5 * Wrap(column_angle - row_angle);
   lattice.spacing_x = along.norm();
   // Row spacing: the area of the lattice cell divided by the pitch along a row.
   lattice.spacing_y = std::abs(direct.determinant()) / lattice.spacing_x;
@@ -444,18 +472,25 @@ GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::opti
   }
 
   // A lens centre: phase_m(p) = 2 pi k_m . (p - centre) + psi, where psi (0 or pi, the sign of the micro-image
-  // profile's Fourier coefficient) is the closure phase offset_1 - offset_2 + offset_3.
+  // profile's Fourier coefficient) is the closure phase offset_1 - offset_2 + offset_3. The lens taken is the one
+  // nearest the axis, in the middle of the blocks the planes were fitted to: each plane's phase there is its best
+  // measured, where its phase at pixel (0, 0) is an extrapolation with its own vector, which the averaged vectors of
+  // the lattice then carry back with the difference (0.2 px on the real F01 frames). From the middle, what the model
+  // cannot follow (the columns' lean) is also half as large at the edges as from a corner.
   const double closure = Wrap(planes[0].offset - planes[1].offset + planes[2].offset);
   const double psi = std::abs(closure) > 0.5 * std::numbers::pi ? std::numbers::pi : 0.0;
+  const double axis_x = guess && guess->axis_x > 0.0 ? guess->axis_x : 0.5 * (grey.cols - 1);
+  const double axis_y = guess && guess->axis_y > 0.0 ? guess->axis_y : 0.5 * (grey.rows - 1);
   Eigen::Matrix2d reciprocal;
   reciprocal << k[0].x, k[0].y, k[1].x, k[1].y;
-  const Eigen::Vector2d cycles(Wrap(psi - planes[0].offset) / kTwoPi, Wrap(psi - planes[1].offset) / kTwoPi);
-  const Eigen::Vector2d lens = reciprocal.inverse() * cycles;
+  auto phase_at_axis = [&](int m) {  // the fitted plane's own phase there
+    return planes[m].offset + kTwoPi * (planes[m].k.x * axis_x + planes[m].k.y * axis_y);
+  };
+  const Eigen::Vector2d cycles(Wrap(psi - phase_at_axis(0)) / kTwoPi, Wrap(psi - phase_at_axis(1)) / kTwoPi);
+  const Eigen::Vector2d lens = Eigen::Vector2d(axis_x, axis_y) + reciprocal.inverse() * cycles;
 
   const double rotation_hint = guess ? guess->rotation : 0.0;
   HexLattice lattice = LatticeFromReciprocal(k[0], k[1], lens.x(), lens.y(), rotation_hint);
-  const double axis_x = guess && guess->axis_x > 0.0 ? guess->axis_x : 0.5 * (grey.cols - 1);
-  const double axis_y = guess && guess->axis_y > 0.0 ? guess->axis_y : 0.5 * (grey.rows - 1);
   GridEstimate estimate;
   estimate.grid = GridFromLattice(lattice, axis_x, axis_y, grey.cols, grey.rows);
   // Fit quality in pixels: a phase error of e rad at first-ring frequency |k| moves the lattice by e / (2 pi |k|).

@@ -90,9 +90,12 @@ TEST(RealRawGrid, ThreeF01FramesMatchTheCamerasCentreTable) {
     EXPECT_GE(grid.columns, 325);
     EXPECT_GE(grid.rows, 375);
     const std::vector<double> d = Distances(grid, table);
-    // The table's centres are integers: a perfect lattice scores a median of about 0.38 px.
-    EXPECT_LE(Quantile(d, 0.5), 0.5);
-    EXPECT_LE(Quantile(d, 0.95), 0.85);
+    // The table's centres are integers: a perfect lattice scores a median of about 0.38 px, and the best lattice of
+    // our model fitted to the table itself 0.410 / p95 0.702. Measured 0.412-0.418 / 0.712-0.735 (issue 49, item 5);
+    // 0.42-0.43 / 0.75-0.78 with the lattice phase from the whole micro-images (the vignetting's tilt inside them
+    // pulls it towards the middle) and the rows' angle alone as the rotation.
+    EXPECT_LE(Quantile(d, 0.5), 0.45);
+    EXPECT_LE(Quantile(d, 0.95), 0.75);
     const auto within = std::upper_bound(d.begin(), d.end(), 1.5) - d.begin();
     EXPECT_GE(static_cast<double>(within) / static_cast<double>(d.size()), 0.99);
     RecordProperty(std::string(frame) + "_median_px", std::to_string(Quantile(d, 0.5)));

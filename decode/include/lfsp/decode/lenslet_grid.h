@@ -105,13 +105,13 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
                                  const GridEstimateOptions& options = {});
 
 // Fits the lattice to any lenslet image, including an ordinary capture (scene content, dark and saturated regions,
-// JPEG blocking, vignetted corners), from its periodicity: the spectral peaks of the image's local contrast give the
-// lattice vectors, the lattice phase of every block of about 12 x 12 lenses (fitted as a plane over the sensor)
-// refines them and gives the lattice position, averaged over the whole sensor. `guess`, when given, bounds the
-// spacing search to +-15 % of guess->spacing (> 0), picks the row direction nearest guess->rotation and indexes
-// lenses from guess->axis; without it, spacings of 4 px to 60 px (or a sixth of the image) are searched, rows are taken
-// nearest horizontal and the axis is the image centre. `grey` as WhiteImageToGrey makes it. The result has no per-lens
-// centres. lfsp::Error if the image shows no lattice.
+// JPEG blocking, vignetted corners), from its periodicity: the spectral peaks of the image's local contrast (its dark
+// side, the gaps and rims that the micro-lenses' edges fix) give the lattice vectors, the lattice phase of every block
+// of about 12 x 12 lenses (fitted as a plane over the sensor) refines them and gives the lattice position, averaged
+// over the whole sensor. `guess`, when given, bounds the spacing search to +-15 % of guess->spacing (> 0), picks the
+// row direction nearest guess->rotation and indexes lenses from guess->axis; without it, spacings of 4 px to 60 px (or
+// a sixth of the image) are searched, rows are taken nearest horizontal and the axis is the image centre. `grey` as
+// WhiteImageToGrey makes it. The result has no per-lens centres. lfsp::Error if the image shows no lattice.
 GridEstimate EstimateLensletGridFromCapture(const cv::Mat& grey, const std::optional<GridGuess>& guess);
 
 // What a lenslet image is, for choosing how to fit its grid.
