@@ -7,7 +7,6 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -275,16 +274,33 @@ double Compactness(const Labels& labels) {
   return MeanOverViews(labels.shape(), [&](ViewIndex v) { return Compactness2D(labels.View(v)); });
 }
 
-int CentreLabelCount(const Labels& labels) {
-  const cv::Mat centre = labels.View(labels.shape().Centre());
-  std::unordered_set<int> seen(centre.begin<int>(), centre.end<int>());
-  return static_cast<int>(seen.size());
+namespace {
+
+// The number of distinct values among `count` labels. Labels are dense in practice (LFSP's 0..n-1, -1 for
+// unlabelled rays), so they are ticked off in a table over their range: hashing each of a 9x9 Illum segmentation's
+// 21.8 M rays took 0.2 s, three times in a pipeline. Labels spread far wider than their count are sorted instead.
+int DistinctLabels(const std::int32_t* values, std::size_t count) {
+  if (count == 0) return 0;
+  const auto [lowest, highest] = std::minmax_element(values, values + count);
+  const std::uint64_t range = static_cast<std::uint64_t>(static_cast<std::int64_t>(*highest) - *lowest) + 1;
+  if (range <= 4 * static_cast<std::uint64_t>(count) + 1024) {
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(range), 0);
+    for (std::size_t i = 0; i < count; ++i)
+      seen[static_cast<std::size_t>(static_cast<std::int64_t>(values[i]) - *lowest)] = 1;
+    return static_cast<int>(std::count(seen.begin(), seen.end(), std::uint8_t{1}));
+  }
+  std::vector<std::int32_t> sorted(values, values + count);
+  std::sort(sorted.begin(), sorted.end());
+  return static_cast<int>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
 }
 
-int LabelCount(const Labels& labels) {
-  std::unordered_set<int> seen(labels.data(), labels.data() + labels.size());
-  return static_cast<int>(seen.size());
+}  // namespace
+
+int CentreLabelCount(const Labels& labels) {
+  return DistinctLabels(labels.ViewData(labels.shape().Centre()), labels.shape().ViewPixels());
 }
+
+int LabelCount(const Labels& labels) { return DistinctLabels(labels.data(), labels.size()); }
 
 double EffectiveLabelRatio(const Labels& labels) {
   const int total = LabelCount(labels);
