@@ -200,7 +200,8 @@ double KhanAverageSize(const Labels& labels) {
 }
 
 nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
-                         const std::vector<DisparityMap>* gt_view_disparity) {
+                         const std::vector<DisparityMap>* gt_view_disparity,
+                         std::optional<double> region_undersegmentation_error) {
   nlohmann::json m;
   m["size"] = KhanAverageSize(labels);
   if (gt_view_disparity != nullptr) {
@@ -209,7 +210,8 @@ nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
   }
   if (gt_labels != nullptr) {
     m["boundary_recall"] = KhanBoundaryRecall(labels, *gt_labels);
-    m["undersegmentation_error"] = RegionUndersegmentationError(labels, *gt_labels);
+    m["undersegmentation_error"] = region_undersegmentation_error ? *region_undersegmentation_error
+                                                                  : RegionUndersegmentationError(labels, *gt_labels);
     m["achievable_accuracy"] = KhanAchievableAccuracy(labels, *gt_labels);
   }
   return m;

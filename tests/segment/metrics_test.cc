@@ -167,6 +167,15 @@ TEST(Metrics4D, AverageOverViews) {
   EXPECT_NEAR(UndersegmentationError(sp, gt), 0.5 / 3.0, 1e-12);
   EXPECT_NEAR(AchievableSegmentationAccuracy(sp, gt), (1.0 + 24.0 / 32.0 + 1.0) / 3.0, 1e-12);
   EXPECT_THROW(UndersegmentationError(sp, Labels(LightFieldShape{3, 1, 4, 4, 1})), Error);
+  // The three scores from one count of the overlaps: the same values as the functions (a view without ground truth,
+  // all -1, is skipped by both).
+  gt.View(ViewIndex{2, 0}).setTo(-1);
+  const OverlapScores scores = ScoreOverlaps(sp, gt);
+  EXPECT_EQ(scores.undersegmentation_error, UndersegmentationError(sp, gt));
+  EXPECT_EQ(scores.region_undersegmentation_error, RegionUndersegmentationError(sp, gt));
+  EXPECT_EQ(scores.achievable_segmentation_accuracy, AchievableSegmentationAccuracy(sp, gt));
+  EXPECT_NEAR(scores.undersegmentation_error, 0.5 / 2.0, 1e-12);
+  EXPECT_THROW(ScoreOverlaps(sp, Labels(LightFieldShape{3, 1, 4, 4, 1})), Error);
 }
 
 }  // namespace
