@@ -278,6 +278,32 @@ TEST(Hdf5Bundle, NoisePlanesStoredUndeflatedReadBackThroughHdf5AndLfsp) {
   }
 }
 
+// Uncompressed bundles (the simulator's ground truth) are contiguous datasets, read straight from the file in 16 MB
+// pieces on all cores (ReadContiguous): every sample and weight must come back, past the pieces' seams, as float32
+// and as 16-bit storage.
+TEST(Hdf5Bundle, ContiguousDatasetsReadBackExactlyAcrossPieces) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = LightField({5, 5, 300, 200, 3});  // 18 MB of float32 samples: two pieces
+  bundle.light_field.EnableWeights();
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> level(0, 65535);
+  for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
+    bundle.light_field.data()[i] = static_cast<float>(level(random)) / 65535.0f;
+  for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+    bundle.light_field.weights().data()[i] = static_cast<float>(level(random)) / 65535.0f;
+  for (const SampleStorage storage : {SampleStorage::kFloat32, SampleStorage::kUint16}) {
+    const std::filesystem::path path = temp / (storage == SampleStorage::kFloat32 ? "float.h5" : "uint16.h5");
+    WriteBundle(bundle, path, {storage, 0});
+    const Bundle read = ReadBundle(path);
+    ExpectSameSamples(read.light_field, bundle.light_field);
+    ASSERT_TRUE(read.light_field.HasWeights());
+    EXPECT_EQ(std::memcmp(read.light_field.weights().data(), bundle.light_field.weights().data(),
+                          bundle.light_field.weights().size() * sizeof(float)),
+              0);
+  }
+}
+
 TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
   TempDir temp;
   Bundle bundle;
