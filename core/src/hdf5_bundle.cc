@@ -1,6 +1,7 @@
 #include "lfsp/core/hdf5_bundle.h"
 
 #include "hdf5_chunks.h"
+#include "hdf5_contiguous.h"
 #include "hdf5_limits.h"
 
 #include <H5Cpp.h>
@@ -42,9 +43,12 @@ std::string DimsText(const std::vector<hsize_t>& dims) {
 // Reads a numeric dataset of any integer or float type into floats: unsigned 8/16-bit samples are scaled to [0, 1]
 // (the HCI files store uint8 views), floats are taken as they are.
 void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, std::size_t count, const std::string& where) {
-  // Datasets of one view per chunk (what WriteBundle writes) are inflated in parallel; others through HDF5.
+  // Datasets of one view per chunk (what WriteBundle writes) are inflated in parallel, contiguous ones (the
+  // simulator's ground truth) read in parallel; others through HDF5.
   const auto read = [&](void* values, const H5::PredType& type) {
-    if (!ReadViewChunks(dataset.getId(), type.getId(), values, count, where)) dataset.read(values, type);
+    if (!ReadViewChunks(dataset.getId(), type.getId(), values, count, where) &&
+        !ReadContiguous(dataset.getId(), type.getId(), values, count, where))
+      dataset.read(values, type);
   };
   const H5T_class_t type_class = dataset.getTypeClass();
   if (type_class == H5T_FLOAT) {

@@ -3,6 +3,7 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -14,6 +15,9 @@
 namespace lfsp {
 namespace {
 
+// A byte plane whose samples deflate to at least this fraction of their size is stored as it is.
+constexpr double kIncompressible = 0.98;
+
 // HDF5's shuffle filter: byte k of every element, then byte k + 1, ... (all byte planes in turn).
 std::vector<std::uint8_t> Shuffled(const std::uint8_t* bytes, std::size_t elements, std::size_t element_size) {
   std::vector<std::uint8_t> out(elements * element_size);
@@ -24,18 +28,76 @@ std::vector<std::uint8_t> Shuffled(const std::uint8_t* bytes, std::size_t elemen
   return out;
 }
 
-// One chunk as the zlib stream HDF5's deflate filter reads back, made by libdeflate: one whole-buffer call instead
-// of zlib's streaming state. On one shuffled view of a full Illum light field at level 1 (this machine): float32
-// 52 -> 28 ms for 59.5 -> 58.5 % of its size; 16-bit samples 16.7 ms (zlib with run-length matching only, which
-// the files used before) -> 10.4 ms for 87 -> 59 %. Any zlib reader inflates it.
-bool DeflateChunk(const std::vector<std::uint8_t>& in, int level, std::vector<std::uint8_t>& out) {
+// Whether deflate would leave a byte plane as large as it is (a decode's low sample bytes are sensor noise: level 1
+// deflated them to 100.0 % of their size, in half the time the whole chunk took). Asked of deflate itself, on four
+// samples of 4 KiB spread over the plane: 1-2 % of deflating it all. The byte histogram alone cannot tell: the
+// low bytes of labels are evenly spread too, yet deflate to a tenth in runs.
+bool LooksIncompressible(libdeflate_compressor* compressor, const std::uint8_t* plane, std::size_t bytes) {
+  constexpr std::size_t kSample = 4096, kSamples = 4;
+  std::array<std::uint8_t, 2 * kSample> scratch;
+  std::size_t sampled = 0, deflated = 0;
+  for (std::size_t k = 0; k < kSamples; ++k) {
+    const std::size_t length = std::min(kSample, bytes);
+    const std::size_t start = bytes <= kSample ? 0 : (bytes - kSample) * k / (kSamples - 1);
+    const std::size_t size =
+        libdeflate_deflate_compress(compressor, plane + start, length, scratch.data(), scratch.size());
+    sampled += length;
+    deflated += size == 0 ? length : size;
+    if (bytes <= kSample) break;
+  }
+  return sampled == 0 || static_cast<double>(deflated) >= kIncompressible * static_cast<double>(sampled);
+}
+
+// Appends `count` bytes as uncompressed DEFLATE blocks (BTYPE 00), none of them final: each starts on a byte
+// boundary, a header byte 0 (BFINAL 0, BTYPE 00 and the padding), LEN and its one's complement, then the bytes.
+void AppendStoredBlocks(const std::uint8_t* bytes, std::size_t count, std::vector<std::uint8_t>& out) {
+  constexpr std::size_t kLargestStoredBlock = 65535;
+  for (std::size_t done = 0; done < count;) {
+    const auto length = static_cast<std::uint16_t>(std::min(kLargestStoredBlock, count - done));
+    const auto complement = static_cast<std::uint16_t>(~length);
+    out.insert(out.end(), {0, static_cast<std::uint8_t>(length & 0xFF), static_cast<std::uint8_t>(length >> 8),
+                           static_cast<std::uint8_t>(complement & 0xFF), static_cast<std::uint8_t>(complement >> 8)});
+    out.insert(out.end(), bytes + done, bytes + done + length);
+    done += length;
+  }
+}
+
+// One shuffled chunk of `planes` byte planes as the zlib stream HDF5's deflate filter reads back, made by
+// libdeflate: one whole-buffer call instead of zlib's streaming state. On one shuffled view of a full Illum light
+// field at level 1 (this machine): float32 52 -> 28 ms for 59.5 -> 58.5 % of its size; 16-bit samples 16.7 ms (zlib
+// with run-length matching only, which the files used before) -> 10.4 ms for 87 -> 59 %. The leading planes that
+// deflate would not shrink (LooksIncompressible) are stored as they are and only the rest deflated, as one stream after
+// them: still one zlib stream that any zlib reader inflates to the same bytes. Without such planes the stream is
+// libdeflate's own, byte for byte.
+bool DeflateChunk(const std::vector<std::uint8_t>& in, std::size_t planes, int level, std::vector<std::uint8_t>& out) {
   const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
       libdeflate_alloc_compressor(std::clamp(level, 1, 12)), libdeflate_free_compressor);
   if (!compressor) return false;
-  out.resize(libdeflate_zlib_compress_bound(compressor.get(), in.size()));
-  const std::size_t size = libdeflate_zlib_compress(compressor.get(), in.data(), in.size(), out.data(), out.size());
-  out.resize(size);
-  return size > 0;
+  const std::size_t plane_bytes = planes > 0 ? in.size() / planes : 0;
+  std::size_t stored = 0;  // bytes of the leading planes that deflate would not shrink
+  while (stored < in.size() && LooksIncompressible(compressor.get(), in.data() + stored, plane_bytes))
+    stored += plane_bytes;
+  if (stored == 0) {
+    out.resize(libdeflate_zlib_compress_bound(compressor.get(), in.size()));
+    const std::size_t size = libdeflate_zlib_compress(compressor.get(), in.data(), in.size(), out.data(), out.size());
+    out.resize(size);
+    return size > 0;
+  }
+  out.assign({0x78, 0x01});  // zlib header: deflate, 32 KiB window, fastest compression (a multiple of 31)
+  AppendStoredBlocks(in.data(), stored, out);
+  const std::size_t rest = in.size() - stored;
+  // The deflated rest ends the stream with its final block; a chunk of noise alone ends with an empty final stored
+  // block.
+  const std::size_t header = out.size();
+  out.resize(header + libdeflate_deflate_compress_bound(compressor.get(), rest));
+  const std::size_t size =
+      libdeflate_deflate_compress(compressor.get(), in.data() + stored, rest, out.data() + header, out.size() - header);
+  if (size == 0) return false;
+  out.resize(header + size);
+  const std::uint32_t adler = libdeflate_adler32(1, in.data(), in.size());
+  out.insert(out.end(), {static_cast<std::uint8_t>(adler >> 24), static_cast<std::uint8_t>(adler >> 16),
+                         static_cast<std::uint8_t>(adler >> 8), static_cast<std::uint8_t>(adler)});
+  return true;
 }
 
 // Undoes Shuffled: byte plane b of `planes` holds byte b of every element.
@@ -159,7 +221,7 @@ void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, 
     ParallelFor(static_cast<int>(count), [&](int k) {
       const std::size_t view = first + static_cast<std::size_t>(k);
       const std::vector<std::uint8_t> shuffled = Shuffled(bytes + view * chunk_bytes, chunk_elements, element_size);
-      if (!DeflateChunk(shuffled, level, compressed[static_cast<std::size_t>(k)]))
+      if (!DeflateChunk(shuffled, element_size, level, compressed[static_cast<std::size_t>(k)]))
         ThrowFileError(name, "compressing view " + std::to_string(view) + " failed");
     });
     for (std::size_t k = 0; k < count; ++k) {

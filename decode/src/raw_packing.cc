@@ -1,5 +1,6 @@
 #include "lfsp/decode/raw_packing.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -186,6 +187,31 @@ std::vector<std::uint16_t> UnpackRaw(RawPacking packing, std::span<const std::ui
   std::vector<std::uint16_t> pixels(pixel_count);
   UnpackRaw(packing, packed, pixels, source);
   return pixels;
+}
+
+std::uint64_t SumPackedLevels(RawPacking packing, std::istream& in, std::size_t pixel_count,
+                              const std::string& source) {
+  // A multiple of every group's pixel count, so only the last block may end in a partial group; small enough to
+  // stay in the cache and to unpack on one thread (below kParallelGroups).
+  constexpr std::size_t kBlockPixels = std::size_t{1} << 16;
+  std::vector<std::uint8_t> packed(PackedByteCount(packing, kBlockPixels));
+  std::vector<std::uint16_t> pixels(kBlockPixels);
+  std::uint64_t sum = 0;
+  for (std::size_t done = 0; done < pixel_count;) {
+    const std::size_t count = std::min(kBlockPixels, pixel_count - done);
+    const std::size_t bytes = PackedByteCount(packing, count);
+    in.read(reinterpret_cast<char*>(packed.data()), static_cast<std::streamsize>(bytes));
+    if (static_cast<std::size_t>(in.gcount()) != bytes)
+      throw Error(source + ": raw data ends after " +
+                  std::to_string(PackedByteCount(packing, done) +
+                                 static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0))) +
+                  " bytes, expected " + std::to_string(PackedByteCount(packing, pixel_count)) + " bytes");
+    UnpackRaw(packing, std::span<const std::uint8_t>(packed.data(), bytes),
+              std::span<std::uint16_t>(pixels.data(), count), source);
+    for (std::size_t i = 0; i < count; ++i) sum += pixels[i];
+    done += count;
+  }
+  return sum;
 }
 
 std::vector<std::uint8_t> PackRaw(RawPacking packing, std::span<const std::uint16_t> pixels,

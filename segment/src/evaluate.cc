@@ -71,12 +71,16 @@ nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const 
   m["centre_labels"] = CentreLabelCount(labels);
   m["elr"] = EffectiveLabelRatio(labels);
   m["compactness"] = Compactness(labels);
-  m["khan"] = ScoreKhan(labels, gt_labels, consistency ? gt_view_disparity : nullptr);
+  // The overlap scores from one count of the overlaps, Khan's region error among them.
+  std::optional<OverlapScores> overlaps;
+  if (gt_labels != nullptr) overlaps = ScoreOverlaps(labels, *gt_labels);
+  m["khan"] = ScoreKhan(labels, gt_labels, consistency ? gt_view_disparity : nullptr,
+                        overlaps ? std::optional<double>(overlaps->region_undersegmentation_error) : std::nullopt);
   if (gt_labels != nullptr) {
     m["boundary_recall"] = BoundaryRecall(labels, *gt_labels, boundary_tolerance);
-    m["undersegmentation_error"] = UndersegmentationError(labels, *gt_labels);
-    m["undersegmentation_error_region"] = RegionUndersegmentationError(labels, *gt_labels);
-    m["achievable_segmentation_accuracy"] = AchievableSegmentationAccuracy(labels, *gt_labels);
+    m["undersegmentation_error"] = overlaps->undersegmentation_error;
+    m["undersegmentation_error_region"] = overlaps->region_undersegmentation_error;
+    m["achievable_segmentation_accuracy"] = overlaps->achievable_segmentation_accuracy;
   }
   if (consistency) {
     m["self_similarity"] = SelfSimilarity(labels, *gt_view_disparity);

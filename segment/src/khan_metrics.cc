@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <opencv2/imgproc.hpp>
@@ -142,6 +143,62 @@ double KhanBoundaryRecall(const Labels& labels, const Labels& gt) {
   return counted > 0 ? sum / counted : -1.0;
 }
 
+namespace {
+
+// A superpixel's object for Khan's accuracy: the one it overlaps most in a view, and by how many rays.
+struct ObjectChoice {
+  int object = 0;
+  long long overlap = 0;
+};
+
+// Tables of superpixel x object counts above this many entries are left to the ordered maps.
+constexpr std::int64_t kDenseOverlapTable = std::int64_t{1} << 22;
+
+// Each superpixel of one view with its most frequent object among the rays whose object is known (gt >= 0), the
+// smallest object on ties, as Khan's code picks it.
+std::vector<std::pair<int, ObjectChoice>> MostFrequentObjects(const std::int32_t* l, const std::int32_t* g,
+                                                              std::size_t pixels) {
+  std::int32_t min_s = std::numeric_limits<std::int32_t>::max(), max_s = std::numeric_limits<std::int32_t>::min();
+  std::int32_t min_g = min_s, max_g = max_s;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    if (g[i] < 0) continue;
+    min_s = std::min(min_s, l[i]);
+    max_s = std::max(max_s, l[i]);
+    min_g = std::min(min_g, g[i]);
+    max_g = std::max(max_g, g[i]);
+  }
+  std::vector<std::pair<int, ObjectChoice>> chosen;
+  if (min_s > max_s) return chosen;
+  const std::int64_t superpixels = std::int64_t{max_s} - min_s + 1, objects = std::int64_t{max_g} - min_g + 1;
+  if (superpixels <= kDenseOverlapTable / objects) {
+    // Counted in a table, then read object by object in increasing order: a later object wins only with more rays.
+    std::vector<long long> count(static_cast<std::size_t>(superpixels * objects), 0);
+    for (std::size_t i = 0; i < pixels; ++i)
+      if (g[i] >= 0) ++count[static_cast<std::size_t>((std::int64_t{l[i]} - min_s) * objects + (g[i] - min_g))];
+    for (std::int64_t s = 0; s < superpixels; ++s) {
+      ObjectChoice here;
+      for (std::int64_t o = 0; o < objects; ++o) {
+        const long long n = count[static_cast<std::size_t>(s * objects + o)];
+        if (n > here.overlap) here = {static_cast<int>(o + min_g), n};
+      }
+      if (here.overlap > 0) chosen.emplace_back(static_cast<int>(s + min_s), here);
+    }
+    return chosen;
+  }
+  std::unordered_map<int, std::map<int, long long>> overlaps;  // superpixel -> object -> rays (objects ordered)
+  for (std::size_t i = 0; i < pixels; ++i)
+    if (g[i] >= 0) ++overlaps[l[i]][g[i]];
+  for (const auto& [superpixel, counts] : overlaps) {
+    ObjectChoice here;
+    for (const auto& [object, n] : counts)
+      if (n > here.overlap) here = {object, n};
+    chosen.emplace_back(superpixel, here);
+  }
+  return chosen;
+}
+
+}  // namespace
+
 double KhanAchievableAccuracy(const Labels& labels, const Labels& gt) {
   if (labels.shape().width != gt.shape().width || labels.shape().height != gt.shape().height ||
       labels.shape().Views() != gt.shape().Views())
@@ -151,28 +208,28 @@ double KhanAchievableAccuracy(const Labels& labels, const Labels& gt) {
   std::vector<ViewIndex> order;
   for (int u = 0; u < shape.nu; ++u)
     for (int v = 0; v < shape.nv; ++v) order.push_back({u, v});
-  struct Choice {
-    int object = 0;
-    long long overlap = 0;
-  };
-  std::unordered_map<int, Choice> object_of;
-  for (const ViewIndex view : order) {
-    const std::int32_t* l = labels.ViewData(view);
-    const std::int32_t* g = gt.ViewData(view);
-    std::unordered_map<int, std::map<int, long long>> overlaps;  // superpixel -> object -> rays (objects ordered)
-    for (std::size_t i = 0; i < shape.ViewPixels(); ++i)
-      if (g[i] >= 0) ++overlaps[l[i]][g[i]];
-    for (const auto& [superpixel, objects] : overlaps) {
-      Choice here;
-      for (const auto& [object, count] : objects)
-        if (count > here.overlap) here = {object, count};  // the most frequent; the smallest object on ties
-      Choice& best = object_of[superpixel];
+  const int views = static_cast<int>(order.size());
+  // Each view's choices are counted in parallel (a 9x9 Illum segmentation took 0.3 s in ordered maps on one thread),
+  // then merged in Khan's order; each superpixel appears once per view, so the merge does not depend on the order
+  // within a view.
+  std::vector<std::vector<std::pair<int, ObjectChoice>>> per_view(static_cast<std::size_t>(views));
+#pragma omp parallel for schedule(dynamic)
+  for (int k = 0; k < views; ++k) {
+    const ViewIndex view = order[static_cast<std::size_t>(k)];
+    per_view[static_cast<std::size_t>(k)] =
+        MostFrequentObjects(labels.ViewData(view), gt.ViewData(view), shape.ViewPixels());
+  }
+  std::unordered_map<int, ObjectChoice> object_of;
+  for (const auto& choices : per_view)
+    for (const auto& [superpixel, here] : choices) {
+      ObjectChoice& best = object_of[superpixel];
       if (here.overlap > best.overlap) best = here;
     }
-  }
-  double sum = 0.0;
-  int counted = 0;
-  for (const ViewIndex view : order) {
+  // The share of each view's known rays whose superpixel's object is theirs, views in parallel, summed in order.
+  std::vector<double> share(static_cast<std::size_t>(views), -1.0);
+#pragma omp parallel for schedule(dynamic)
+  for (int k = 0; k < views; ++k) {
+    const ViewIndex view = order[static_cast<std::size_t>(k)];
     const std::int32_t* l = labels.ViewData(view);
     const std::int32_t* g = gt.ViewData(view);
     long long right = 0, rays = 0;
@@ -182,8 +239,13 @@ double KhanAchievableAccuracy(const Labels& labels, const Labels& gt) {
       const auto found = object_of.find(l[i]);
       right += found != object_of.end() && found->second.object == g[i];
     }
-    if (rays == 0) continue;
-    sum += static_cast<double>(right) / static_cast<double>(rays);
+    if (rays > 0) share[static_cast<std::size_t>(k)] = static_cast<double>(right) / static_cast<double>(rays);
+  }
+  double sum = 0.0;
+  int counted = 0;
+  for (const double value : share) {
+    if (value < 0.0) continue;
+    sum += value;
     ++counted;
   }
   return counted > 0 ? sum / counted : -1.0;
@@ -200,7 +262,8 @@ double KhanAverageSize(const Labels& labels) {
 }
 
 nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
-                         const std::vector<DisparityMap>* gt_view_disparity) {
+                         const std::vector<DisparityMap>* gt_view_disparity,
+                         std::optional<double> region_undersegmentation_error) {
   nlohmann::json m;
   m["size"] = KhanAverageSize(labels);
   if (gt_view_disparity != nullptr) {
@@ -209,7 +272,8 @@ nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
   }
   if (gt_labels != nullptr) {
     m["boundary_recall"] = KhanBoundaryRecall(labels, *gt_labels);
-    m["undersegmentation_error"] = RegionUndersegmentationError(labels, *gt_labels);
+    m["undersegmentation_error"] = region_undersegmentation_error ? *region_undersegmentation_error
+                                                                  : RegionUndersegmentationError(labels, *gt_labels);
     m["achievable_accuracy"] = KhanAchievableAccuracy(labels, *gt_labels);
   }
   return m;

@@ -7,7 +7,6 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -129,14 +128,8 @@ Overlaps CountOverlaps(const cv::Mat& labels, const cv::Mat& gt) {
 int SuperpixelOf(std::uint64_t key) { return static_cast<int>(static_cast<std::uint32_t>(key >> 32)); }
 int RegionOf(std::uint64_t key) { return static_cast<int>(static_cast<std::uint32_t>(key & 0xffffffffu)); }
 
-// Mean over views of a per-view score; views where the score is negative (undefined) are skipped.
-template <typename Score>
-double MeanOverViews(const LightFieldShape& shape, Score score) {
-  const int views = static_cast<int>(shape.Views());
-  std::vector<double> values(static_cast<std::size_t>(views));
-#pragma omp parallel for schedule(dynamic)
-  for (int cam = 0; cam < views; ++cam)
-    values[static_cast<std::size_t>(cam)] = score(ViewFromCameraNumber(cam, shape.nu));
+// Mean of per-view scores in view order; views where the score is negative (undefined) are skipped.
+double MeanOfDefined(const std::vector<double>& values) {
   double sum = 0.0;
   int count = 0;
   for (double value : values) {
@@ -145,6 +138,53 @@ double MeanOverViews(const LightFieldShape& shape, Score score) {
     ++count;
   }
   return count > 0 ? sum / count : -1.0;
+}
+
+// Mean over views of a per-view score, the views scored in parallel.
+template <typename Score>
+double MeanOverViews(const LightFieldShape& shape, Score score) {
+  const int views = static_cast<int>(shape.Views());
+  std::vector<double> values(static_cast<std::size_t>(views));
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < views; ++cam)
+    values[static_cast<std::size_t>(cam)] = score(ViewFromCameraNumber(cam, shape.nu));
+  return MeanOfDefined(values);
+}
+
+// The overlap scores of one view's counted overlaps (-1: undefined, no labelled pixel).
+double UndersegmentationErrorOf(const Overlaps& o) {
+  if (o.pixels == 0) return -1.0;
+  long long error = 0;
+  for (const auto& [key, inside] : o.joint) {
+    const long long outside = o.superpixel.at(SuperpixelOf(key)) - inside;
+    error += std::min(inside, outside);
+  }
+  return static_cast<double>(error) / static_cast<double>(o.pixels);
+}
+
+double RegionUndersegmentationErrorOf(const Overlaps& o) {
+  if (o.region.empty()) return -1.0;
+  std::unordered_map<int, double> error_of_region;
+  for (const auto& [key, inside] : o.joint) {
+    const long long size = o.superpixel.at(SuperpixelOf(key));
+    const long long error = 2 * inside > size ? size - inside : inside;
+    error_of_region[RegionOf(key)] += static_cast<double>(error);
+  }
+  double sum = 0.0;
+  for (const auto& [region, size] : o.region) sum += error_of_region[region] / static_cast<double>(size);
+  return sum / static_cast<double>(o.region.size());
+}
+
+double AchievableSegmentationAccuracyOf(const Overlaps& o) {
+  if (o.pixels == 0) return -1.0;
+  std::unordered_map<int, long long> best;
+  for (const auto& [key, inside] : o.joint) {
+    long long& b = best[SuperpixelOf(key)];
+    b = std::max(b, inside);
+  }
+  long long sum = 0;
+  for (const auto& [superpixel, count] : best) sum += count;
+  return static_cast<double>(sum) / static_cast<double>(o.pixels);
 }
 
 }  // namespace
@@ -163,41 +203,15 @@ double BoundaryRecall2D(const cv::Mat& labels, const cv::Mat& gt, int tolerance)
 }
 
 double UndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt) {
-  const Overlaps o = CountOverlaps(labels, gt);
-  if (o.pixels == 0) return -1.0;
-  long long error = 0;
-  for (const auto& [key, inside] : o.joint) {
-    const long long outside = o.superpixel.at(SuperpixelOf(key)) - inside;
-    error += std::min(inside, outside);
-  }
-  return static_cast<double>(error) / static_cast<double>(o.pixels);
+  return UndersegmentationErrorOf(CountOverlaps(labels, gt));
 }
 
 double RegionUndersegmentationError2D(const cv::Mat& labels, const cv::Mat& gt) {
-  const Overlaps o = CountOverlaps(labels, gt);
-  if (o.region.empty()) return -1.0;
-  std::unordered_map<int, double> error_of_region;
-  for (const auto& [key, inside] : o.joint) {
-    const long long size = o.superpixel.at(SuperpixelOf(key));
-    const long long error = 2 * inside > size ? size - inside : inside;
-    error_of_region[RegionOf(key)] += static_cast<double>(error);
-  }
-  double sum = 0.0;
-  for (const auto& [region, size] : o.region) sum += error_of_region[region] / static_cast<double>(size);
-  return sum / static_cast<double>(o.region.size());
+  return RegionUndersegmentationErrorOf(CountOverlaps(labels, gt));
 }
 
 double AchievableSegmentationAccuracy2D(const cv::Mat& labels, const cv::Mat& gt) {
-  const Overlaps o = CountOverlaps(labels, gt);
-  if (o.pixels == 0) return -1.0;
-  std::unordered_map<int, long long> best;
-  for (const auto& [key, inside] : o.joint) {
-    long long& b = best[SuperpixelOf(key)];
-    b = std::max(b, inside);
-  }
-  long long sum = 0;
-  for (const auto& [superpixel, count] : best) sum += count;
-  return static_cast<double>(sum) / static_cast<double>(o.pixels);
+  return AchievableSegmentationAccuracyOf(CountOverlaps(labels, gt));
 }
 
 double Compactness2D(const cv::Mat& labels) {
@@ -271,20 +285,54 @@ double AchievableSegmentationAccuracy(const Labels& labels, const Labels& gt) {
                        [&](ViewIndex v) { return AchievableSegmentationAccuracy2D(labels.View(v), gt.View(v)); });
 }
 
+OverlapScores ScoreOverlaps(const Labels& labels, const Labels& gt) {
+  CheckSameShape(labels, gt);
+  const LightFieldShape& shape = labels.shape();
+  const std::size_t views = shape.Views();
+  std::vector<double> ue(views), region_ue(views), asa(views);
+#pragma omp parallel for schedule(dynamic)
+  for (int cam = 0; cam < static_cast<int>(views); ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    const Overlaps o = CountOverlaps(labels.View(view), gt.View(view));
+    const auto at = static_cast<std::size_t>(cam);
+    ue[at] = UndersegmentationErrorOf(o);
+    region_ue[at] = RegionUndersegmentationErrorOf(o);
+    asa[at] = AchievableSegmentationAccuracyOf(o);
+  }
+  return {MeanOfDefined(ue), MeanOfDefined(region_ue), MeanOfDefined(asa)};
+}
+
 double Compactness(const Labels& labels) {
   return MeanOverViews(labels.shape(), [&](ViewIndex v) { return Compactness2D(labels.View(v)); });
 }
 
-int CentreLabelCount(const Labels& labels) {
-  const cv::Mat centre = labels.View(labels.shape().Centre());
-  std::unordered_set<int> seen(centre.begin<int>(), centre.end<int>());
-  return static_cast<int>(seen.size());
+namespace {
+
+// The number of distinct values among `count` labels. Labels are dense in practice (LFSP's 0..n-1, -1 for
+// unlabelled rays), so they are ticked off in a table over their range: hashing each of a 9x9 Illum segmentation's
+// 21.8 M rays took 0.2 s, three times in a pipeline. Labels spread far wider than their count are sorted instead.
+int DistinctLabels(const std::int32_t* values, std::size_t count) {
+  if (count == 0) return 0;
+  const auto [lowest, highest] = std::minmax_element(values, values + count);
+  const std::uint64_t range = static_cast<std::uint64_t>(static_cast<std::int64_t>(*highest) - *lowest) + 1;
+  if (range <= 4 * static_cast<std::uint64_t>(count) + 1024) {
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(range), 0);
+    for (std::size_t i = 0; i < count; ++i)
+      seen[static_cast<std::size_t>(static_cast<std::int64_t>(values[i]) - *lowest)] = 1;
+    return static_cast<int>(std::count(seen.begin(), seen.end(), std::uint8_t{1}));
+  }
+  std::vector<std::int32_t> sorted(values, values + count);
+  std::sort(sorted.begin(), sorted.end());
+  return static_cast<int>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
 }
 
-int LabelCount(const Labels& labels) {
-  std::unordered_set<int> seen(labels.data(), labels.data() + labels.size());
-  return static_cast<int>(seen.size());
+}  // namespace
+
+int CentreLabelCount(const Labels& labels) {
+  return DistinctLabels(labels.ViewData(labels.shape().Centre()), labels.shape().ViewPixels());
 }
+
+int LabelCount(const Labels& labels) { return DistinctLabels(labels.data(), labels.size()); }
 
 double EffectiveLabelRatio(const Labels& labels) {
   const int total = LabelCount(labels);

@@ -1,8 +1,10 @@
 // Round trips between every light-field format must be exact for 8- and 16-bit data (issue 2).
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -211,6 +213,94 @@ TEST(Hdf5Bundle, ADamagedViewChunkIsAnErrorNamingTheFile) {
     EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();
     // Only the parallel reader says this (HDF5's own read fails otherwise): the chunks took that path.
     EXPECT_NE(std::string(error.what()).find("does not inflate"), std::string::npos) << error.what();
+  }
+}
+
+// The samples of dataset LF as HDF5's own deflate filter (zlib) inflates them, past lfsp's parallel reader.
+std::vector<std::uint16_t> LfThroughHdf5(const std::filesystem::path& path, std::size_t count) {
+  std::vector<std::uint16_t> values(count);
+  const hid_t file = H5Fopen(path.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t dataset = H5Dopen2(file, "LF", H5P_DEFAULT);
+  const herr_t status = H5Dread(dataset, H5T_NATIVE_UINT16, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(dataset);
+  H5Fclose(file);
+  EXPECT_GE(status, 0) << path;
+  return values;
+}
+
+// The first bytes of view (0, 0)'s stored chunk of dataset LF.
+std::vector<std::uint8_t> FirstChunkStart(const std::filesystem::path& path, std::size_t bytes) {
+  const hid_t file = H5Fopen(path.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t dataset = H5Dopen2(file, "LF", H5P_DEFAULT);
+  const hsize_t offset[5] = {0, 0, 0, 0, 0};
+  hsize_t stored = 0;
+  H5Dget_chunk_storage_size(dataset, offset, &stored);
+  std::vector<std::uint8_t> chunk(static_cast<std::size_t>(stored));
+  std::uint32_t filters = 0;
+  H5Dread_chunk(dataset, H5P_DEFAULT, offset, &filters, chunk.data());
+  H5Dclose(dataset);
+  H5Fclose(file);
+  chunk.resize(std::min(bytes, chunk.size()));
+  return chunk;
+}
+
+// A byte plane of noise (a decode's low sample bytes) is stored in the chunk's zlib stream, not deflated, and the
+// rest deflated after it: both HDF5's zlib and lfsp's reader must inflate that to the samples, for 16-bit samples
+// (the low plane stored, the high one deflated) and 8-bit ones (the only plane stored, then an empty final block).
+TEST(Hdf5Bundle, NoisePlanesStoredUndeflatedReadBackThroughHdf5AndLfsp) {
+  TempDir temp;
+  for (const int bits : {16, 8}) {
+    Bundle bundle;
+    bundle.light_field = LightField({5, 5, 64, 48, 3});
+    std::mt19937 random(11);
+    const int levels = (1 << bits) - 1;
+    // 16-bit: a smooth high byte over a noise low byte; 8-bit: noise.
+    std::uniform_int_distribution<int> noise(0, 255);
+    for (std::size_t i = 0; i < bundle.light_field.size(); ++i) {
+      const int level = bits == 16 ? static_cast<int>((i / 3000) % 256) * 256 + noise(random) : noise(random);
+      bundle.light_field.data()[i] = static_cast<float>(level) / static_cast<float>(levels);
+    }
+    BundleWriteOptions options;
+    options.storage = bits == 16 ? SampleStorage::kUint16 : SampleStorage::kUint8;
+    options.compression_level = 1;
+    const std::filesystem::path path = temp / ("noise" + std::to_string(bits) + ".h5");
+    WriteBundle(bundle, path, options);
+    ExpectSameSamples(ReadBundle(path).light_field, bundle.light_field);
+    const std::vector<std::uint16_t> through_hdf5 = LfThroughHdf5(path, bundle.light_field.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < through_hdf5.size(); ++i)
+      differing += through_hdf5[i] != static_cast<std::uint16_t>(std::lround(bundle.light_field.data()[i] * levels));
+    EXPECT_EQ(differing, 0u) << bits << "-bit samples as HDF5's zlib inflates them";
+    // zlib header, then a stored block that is not final (header byte 0) holding the whole plane: 64 x 48 x 3 =
+    // 9216 = 0x2400 bytes (LEN, then NLEN, little-endian).
+    const std::vector<std::uint8_t> start = FirstChunkStart(path, 7);
+    EXPECT_EQ(start, (std::vector<std::uint8_t>{0x78, 0x01, 0x00, 0x00, 0x24, 0xFF, 0xDB})) << bits;
+  }
+}
+
+// Uncompressed bundles (the simulator's ground truth) are contiguous datasets, read straight from the file in 16 MB
+// pieces on all cores (ReadContiguous): every sample and weight must come back, past the pieces' seams, as float32
+// and as 16-bit storage.
+TEST(Hdf5Bundle, ContiguousDatasetsReadBackExactlyAcrossPieces) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = LightField({5, 5, 300, 200, 3});  // 18 MB of float32 samples: two pieces
+  bundle.light_field.EnableWeights();
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> level(0, 65535);
+  for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
+    bundle.light_field.data()[i] = static_cast<float>(level(random)) / 65535.0f;
+  for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+    bundle.light_field.weights().data()[i] = static_cast<float>(level(random)) / 65535.0f;
+  for (const SampleStorage storage : {SampleStorage::kFloat32, SampleStorage::kUint16}) {
+    const std::filesystem::path path = temp / (storage == SampleStorage::kFloat32 ? "float.h5" : "uint16.h5");
+    WriteBundle(bundle, path, {storage, 0});
+    const Bundle read = ReadBundle(path);
+    ExpectSameSamples(read.light_field, bundle.light_field);
+    ASSERT_TRUE(read.light_field.HasWeights());
+    EXPECT_EQ(std::memcmp(read.light_field.weights().data(), bundle.light_field.weights().data(),
+                          bundle.light_field.weights().size() * sizeof(float)),
+              0);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <sstream>
 
 #include "lfsp/core/error.h"
 
@@ -96,6 +97,27 @@ TEST(RawPacking, LargeBufferRoundTripUsesEveryValue) {
       pixels[i] = static_cast<std::uint16_t>((i * 2654435761u) % (MaxPixelValue(packing) + 1u));
     }
     EXPECT_EQ(UnpackRaw(packing, PackRaw(packing, pixels, "test"), pixels.size(), "test"), pixels);
+  }
+}
+
+// The streamed sum (a white image's mean level) over more than one block and a partial last group equals the sum
+// over the unpacked pixels; a stream that ends early is an error naming the source.
+TEST(RawPacking, StreamedSumOfLevelsEqualsTheUnpackedSum) {
+  const std::size_t n = (std::size_t{1} << 16) * 2 + 3;  // two whole blocks and a partial group
+  for (const RawPacking packing : kAllPackings) {
+    const std::vector<std::uint16_t> pixels = RandomPixels(n, packing, 5);
+    const std::vector<std::uint8_t> packed = PackRaw(packing, pixels, "test");
+    std::uint64_t expected = 0;
+    for (const std::uint16_t p : pixels) expected += p;
+    std::istringstream in(std::string(packed.begin(), packed.end()));
+    EXPECT_EQ(SumPackedLevels(packing, in, n, "test"), expected) << ToString(packing);
+    std::istringstream short_stream(std::string(packed.begin(), packed.end() - 1));
+    try {
+      (void)SumPackedLevels(packing, short_stream, n, "white.RAW");
+      ADD_FAILURE() << "a short stream was summed";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("white.RAW: raw data ends after"), std::string::npos) << error.what();
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <random>
 
 #include "lfsp/segment/khan_metrics.h"
 #include "lfsp/segment/metrics.h"
@@ -106,6 +107,23 @@ TEST(KhanAverageSize, IsTheMeanSquareRootOfCentreAreas) {
   // Centre view (1, 1) of 3x3 views: labels of 4 and 16 rays (4x5 map: first row label 0, the rest label 1).
   const Labels labels = MakeLabels(3, 3, 4, 5, [](ViewIndex, int, int y) { return y == 0 ? 0 : 1; });
   EXPECT_DOUBLE_EQ(KhanAverageSize(labels), (2.0 + 4.0) / 2.0);
+}
+
+// Superpixel ids spread far apart (counted in ordered maps, not a table) give the same accuracy as dense ones, on
+// random labels with ties and unknown objects (-1).
+TEST(KhanAchievableAccuracy, SparseIdsScoreAsDenseOnes) {
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> superpixel(0, 11), object(-1, 3);
+  Labels dense(LightFieldShape{3, 3, 16, 12, 1}), sparse(dense.shape()), gt(dense.shape());
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    dense.data()[i] = superpixel(random);
+    sparse.data()[i] = dense.data()[i] * 100003;
+    gt.data()[i] = object(random);
+  }
+  const double accuracy = KhanAchievableAccuracy(dense, gt);
+  EXPECT_GT(accuracy, 0.0);
+  EXPECT_LT(accuracy, 1.0);
+  EXPECT_EQ(KhanAchievableAccuracy(sparse, gt), accuracy);
 }
 
 TEST(ScoreKhan, ReportsWhatTheInputsAllow) {

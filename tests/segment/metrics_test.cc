@@ -101,6 +101,17 @@ TEST(EffectiveLabelRatio, CentreLabelsOverAllLabels) {
   EXPECT_NEAR(EffectiveLabelRatio(labels), 2.0 / 3.0, 1e-12);
 }
 
+// Labels far apart (read from a file: -1 for unlabelled, ids in the millions) are counted as dense ones are.
+TEST(EffectiveLabelRatio, SparseAndNegativeLabelsCountedLikeDenseOnes) {
+  Labels labels(Row3());
+  SetView(labels, 0, Columns(8, 4, 4, -1, 2000000000));
+  SetView(labels, 1, Columns(8, 4, 4, -2147483647 - 1, 7));
+  SetView(labels, 2, Columns(8, 4, 4, 7, -1));
+  EXPECT_EQ(LabelCount(labels), 4);  // -1, 7, 2e9, INT32_MIN
+  EXPECT_EQ(CentreLabelCount(labels), 2);
+  EXPECT_NEAR(EffectiveLabelRatio(labels), 0.5, 1e-12);
+}
+
 TEST(SelfSimilarity, ByHandOnAConstantDisparityRow) {
   // Disparity 1 everywhere: centre pixel x0 appears at x0 + 1 in view u = 0 and at x0 - 1 in view u = 2, and a
   // ray at x of view u projects back to x' = x + (u - 1).
@@ -156,6 +167,15 @@ TEST(Metrics4D, AverageOverViews) {
   EXPECT_NEAR(UndersegmentationError(sp, gt), 0.5 / 3.0, 1e-12);
   EXPECT_NEAR(AchievableSegmentationAccuracy(sp, gt), (1.0 + 24.0 / 32.0 + 1.0) / 3.0, 1e-12);
   EXPECT_THROW(UndersegmentationError(sp, Labels(LightFieldShape{3, 1, 4, 4, 1})), Error);
+  // The three scores from one count of the overlaps: the same values as the functions (a view without ground truth,
+  // all -1, is skipped by both).
+  gt.View(ViewIndex{2, 0}).setTo(-1);
+  const OverlapScores scores = ScoreOverlaps(sp, gt);
+  EXPECT_EQ(scores.undersegmentation_error, UndersegmentationError(sp, gt));
+  EXPECT_EQ(scores.region_undersegmentation_error, RegionUndersegmentationError(sp, gt));
+  EXPECT_EQ(scores.achievable_segmentation_accuracy, AchievableSegmentationAccuracy(sp, gt));
+  EXPECT_NEAR(scores.undersegmentation_error, 0.5 / 2.0, 1e-12);
+  EXPECT_THROW(ScoreOverlaps(sp, Labels(LightFieldShape{3, 1, 4, 4, 1})), Error);
 }
 
 }  // namespace

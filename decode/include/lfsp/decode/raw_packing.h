@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <istream>
 #include <span>
 #include <string>
 #include <string_view>
@@ -50,6 +51,12 @@ void UnpackRaw(RawPacking packing, std::span<const std::uint8_t> packed, std::sp
                const std::string& source);
 std::vector<std::uint16_t> UnpackRaw(RawPacking packing, std::span<const std::uint8_t> packed, std::size_t pixel_count,
                                      const std::string& source);
+
+// The sum of the levels of `pixel_count` pixels packed as `packing`, read from `in` and unpacked a block of 64 Ki
+// pixels at a time: a white image's mean level without its unpacked copy (the white-image database measured six
+// full-size Illum whites on every decode by unpacking each whole). Exact: the same sum as over UnpackRaw's pixels.
+// Throws lfsp::Error naming `source` when `in` ends before PackedByteCount(packing, pixel_count) bytes.
+std::uint64_t SumPackedLevels(RawPacking packing, std::istream& in, std::size_t pixel_count, const std::string& source);
 
 // Packs `pixels` (values must fit in BitsPerPixel bits, otherwise lfsp::Error
 // naming `source` and the first offending pixel index) into exactly

@@ -29,6 +29,7 @@
 // lands in the centre view at (x + (u - uc) d, y + (v - vc) d).
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "lfsp/core/light_field.h"
@@ -42,8 +43,10 @@ double KhanAchievableAccuracy(const Labels& labels, const Labels& gt);
 double KhanAverageSize(const Labels& labels);
 
 // Every Khan metric the inputs allow: {"size", "self_similarity", "labels_per_pixel"} with view disparities,
-// {"boundary_recall", "undersegmentation_error", "achievable_accuracy"} with ground-truth labels.
+// {"boundary_recall", "undersegmentation_error", "achievable_accuracy"} with ground-truth labels. Khan's
+// undersegmentation error is RegionUndersegmentationError: a caller that has it already passes it in.
 nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
-                         const std::vector<DisparityMap>* gt_view_disparity);
+                         const std::vector<DisparityMap>* gt_view_disparity,
+                         std::optional<double> region_undersegmentation_error = std::nullopt);
 
 }  // namespace lfsp::segment

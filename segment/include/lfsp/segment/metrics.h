@@ -29,6 +29,15 @@ double BoundaryRecall(const Labels& labels, const Labels& gt, int tolerance = 2)
 double UndersegmentationError(const Labels& labels, const Labels& gt);
 double RegionUndersegmentationError(const Labels& labels, const Labels& gt);
 double AchievableSegmentationAccuracy(const Labels& labels, const Labels& gt);
+
+// The three overlap scores above from one count of each view's overlaps (each function alone counts them anew,
+// 0.15 s apiece on a 9x9 Illum segmentation): the same values.
+struct OverlapScores {
+  double undersegmentation_error = -1.0;
+  double region_undersegmentation_error = -1.0;
+  double achievable_segmentation_accuracy = -1.0;
+};
+OverlapScores ScoreOverlaps(const Labels& labels, const Labels& gt);
 double Compactness(const Labels& labels);
 
 // Effective label ratio (Eq. 11): labels present in the centre view / labels present anywhere.
