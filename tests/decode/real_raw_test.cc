@@ -7,15 +7,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <fstream>
-#include <numbers>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <vector>
 
-#include "lfsp/core/srgb.h"
 #include "lfsp/decode/capture_decoder.h"
+#include "lfsp/decode/jpeg_block_gain.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/raw_input.h"
 #include "test_support.h"
@@ -118,6 +115,18 @@ TEST(RealRawGrid, WhiteImageCropMatchesLfToolboxCentres) {
   RecordProperty("median_px", std::to_string(Quantile(d, 0.5)));
 }
 
+// The lattice of a decode summary's "grid".
+HexLattice LatticeOf(const nlohmann::json& grid) {
+  HexLattice lattice;
+  lattice.spacing_x = grid["spacing_x"];
+  lattice.spacing_y = grid["spacing_y"];
+  lattice.rotation = grid["rotation"];
+  lattice.origin_x = grid["origin_x"];
+  lattice.origin_y = grid["origin_y"];
+  lattice.row_shift = grid["row_shift"];
+  return lattice;
+}
+
 // Channel means (R, G, B) of the centre view, as stored (sRGB): of every pixel, or of the brightest `share` of them
 // (by R + G + B).
 std::array<double, 3> CentreMeans(const LightField& light_field, double share = 1.0) {
@@ -135,47 +144,6 @@ std::array<double, 3> CentreMeans(const LightField& light_field, double share = 
     for (int c = 0; c < 3; ++c) means[static_cast<std::size_t>(c)] += pixels[i][static_cast<std::size_t>(c)];
   for (double& m : means) m /= static_cast<double>(count);
   return means;
-}
-
-// How strongly the centre view's luminance follows where its samples fall down the JPEG's 8-row blocks, in % of the
-// local level: the first two harmonics, over the sensor row of each pixel's lens inside its block, of the luminance's
-// difference from its local mean (a blur over 6 rows and 2 columns) over that mean. The scene does not follow the
-// blocks' rows (they drift through a cycle every 13-14 lens rows and twice along each row), so it averages out.
-// Written out here apart from the decoder's FlattenJpegBlockGain, whose per-channel bins it does not use.
-double BlockLockedLuminance(const LightField& light_field, const nlohmann::json& grid) {
-  HexLattice lattice;
-  lattice.spacing_x = grid["spacing_x"];
-  lattice.spacing_y = grid["spacing_y"];
-  lattice.rotation = grid["rotation"];
-  lattice.origin_x = grid["origin_x"];
-  lattice.origin_y = grid["origin_y"];
-  lattice.row_shift = grid["row_shift"];
-  const LightFieldShape& shape = light_field.shape();
-  const ViewIndex centre = shape.Centre();
-  cv::Mat luma(shape.height, shape.width, CV_64F), local;
-  for (int y = 0; y < shape.height; ++y)
-    for (int x = 0; x < shape.width; ++x) {
-      double sum = 0.0;
-      for (int c = 0; c < 3; ++c) sum += SrgbToLinear(light_field.at(centre, y, x, c));
-      luma.at<double>(y, x) = sum / 3.0;
-    }
-  cv::GaussianBlur(luma, local, cv::Size(), 2.0, 6.0, cv::BORDER_REFLECT);
-  std::complex<double> first = 0.0, second = 0.0;
-  long count = 0;
-  for (int y = 8; y < shape.height - 8; ++y)
-    for (int x = 0; x < shape.width; ++x) {
-      const double level = local.at<double>(y, x);
-      const double ratio = (luma.at<double>(y, x) - level) / level;
-      if (light_field.weights().at(centre, y, x) < 0.05f || !(level > 0.005) || !(std::abs(ratio) < 0.2)) continue;
-      const double shift = 0.5 * lattice.Shift(y);
-      double sx = 0.0, sy = 0.0;
-      lattice.SensorPosition(std::nearbyint(x * std::sqrt(3.0) / 2.0 - shift) + shift, y, 0.0, 0.0, sx, sy);
-      const double phase = 2.0 * std::numbers::pi * sy / 8.0;
-      first += ratio * std::polar(1.0, -phase);
-      second += ratio * std::polar(1.0, -2.0 * phase);
-      ++count;
-    }
-  return 200.0 * std::hypot(std::abs(first), std::abs(second)) / static_cast<double>(count);
 }
 
 // The real frames decode end to end with the lattice and vignetting from the frame itself (issue 13), and look
@@ -213,7 +181,8 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
     // does not follow the blocks: on IMG_3 it sits on the veins of the leaf at the right, moves between views with the
     // scene's parallax, and keeps one phase across the width, where the blocks' rows turn through two cycles
     // (BENCHMARKS.md). The simulator's ground truth of two-horses, without any JPEG, reads 3.7 on the same measure.
-    const double block_locked = BlockLockedLuminance(result.light_field, result.summary["grid"]);
+    const double block_locked = BlockRowLuminance(result.light_field, shape.Centre(), LatticeOf(result.summary["grid"]),
+                                                  result.light_field.metadata["decode"]["view_step_pixels"]);
     const double bands = result.summary["decode"]["centre_bands"]["chroma"].get<double>();
     const double luma_bands = result.summary["decode"]["centre_bands"]["luma"].get<double>();
     RecordProperty(std::string(frame) + "_block_locked_luma_percent", std::to_string(block_locked));
