@@ -29,6 +29,10 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
                     "Keep the gain the lens lattice leaves in each view (a devignetting error tied to where each lens "
                     "centre falls on the Bayer tile, the same in every view); default: measured and divided out, "
                     "its size in the summary's decode.lattice_gain");
+  command->add_flag("--no-jpeg-block-flattening", arguments.no_jpeg_block_flattening,
+                    "Mosaics stored as JPEG: keep the gain each view takes from where its samples fall in the JPEG's "
+                    "8x8 blocks (horizontal bands every 13-14 rows on an F01); default: measured and divided out, its "
+                    "size in the summary's decode.jpeg_block_gain");
 }
 
 void AddGridFileOption(CLI::App* command, std::string& grid_file) {
@@ -54,6 +58,7 @@ decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& argum
   if (!(arguments.dehex >= 0.0 && arguments.dehex <= 0.25)) throw Error(OptionName("dehex") + " must be in [0, 0.25]");
   options.decode.dehex = arguments.dehex;
   options.decode.flatten_lattice = !arguments.no_lattice_flattening;
+  options.decode.flatten_jpeg_blocks = !arguments.no_jpeg_block_flattening;
   return options;
 }
 
@@ -65,7 +70,8 @@ nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
            arguments.white_balance.empty() ? nlohmann::json(nullptr) : nlohmann::json(arguments.white_balance)},
           {"hot_pixels", !arguments.no_hot_pixels},
           {"dehex", arguments.dehex},
-          {"lattice_flattening", !arguments.no_lattice_flattening}};
+          {"lattice_flattening", !arguments.no_lattice_flattening},
+          {"jpeg_block_flattening", !arguments.no_jpeg_block_flattening}};
 }
 
 }  // namespace lfsp::cli

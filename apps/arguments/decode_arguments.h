@@ -21,6 +21,7 @@ struct DecodeArguments {
   bool no_hot_pixels = false;
   double dehex = 0.1;
   bool no_lattice_flattening = false;
+  bool no_jpeg_block_flattening = false;
   PlainRawArguments plain;
 };
 

@@ -154,6 +154,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   if (!decode_options.white_balance)
     decode_options.white_balance =
         WhiteBalance{IsPlainRawImagePath(capture_path) ? WhiteBalanceMode::kAuto : WhiteBalanceMode::kCamera};
+  decode_options.jpeg_block = input.jpeg_block;
   result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, decode_options, &report);
   progress.Tick();
   progress.Finish();

@@ -183,6 +183,7 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
                                 {"last_correction", report.last_correction}};
     }
   }
+  if (IsJpegPath(path)) input.jpeg_block = 8;
   if (codes.empty()) image.pixels.convertTo(codes, CV_32FC1, full_scale);
   image.pixels.release();
 

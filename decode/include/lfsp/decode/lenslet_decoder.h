@@ -6,6 +6,7 @@
 
 #include "lfsp/core/light_field.h"
 #include "lfsp/decode/demosaic.h"
+#include "lfsp/decode/jpeg_block_gain.h"
 #include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/lytro_metadata.h"
@@ -44,6 +45,11 @@ struct DecodeOptions {
   // disparity 0. On the full-size F01 two-horses capture without noise and without its white image it took depth
   // from 45 % to 5.9 % BadPix 0.07 (3.2 % with the white image), and changed nothing measurable with it.
   bool flatten_lattice = true;
+  // A mosaic stored as JPEG (DecodeCaptureFile sets this from the input): its block size in sensor pixels, 8; 0 for
+  // lossless captures. With flatten_jpeg_blocks, the gain each view takes from where its samples fall down the blocks
+  // is measured and divided out (FlattenJpegBlockGain in jpeg_block_gain.h).
+  int jpeg_block = 0;
+  bool flatten_jpeg_blocks = true;
 };
 
 // The decoded 4D grid of a lattice, as LFToolbox sizes it: n = even(ceil(spacing)), views = n - 1 (Illum 15, F01 9),
@@ -68,11 +74,12 @@ struct DecodeReport {
   double row_alternation = 0.0;     // RowAlternationRatio of the result (~1 clean, > 2 striped)
   // ChromaBandRatio and LumaBandRatio of the centre view (view_bands.h: clean decodes read 1.8-2.9)
   std::array<double, 2> centre_bands = {0.0, 0.0};
-  std::optional<LatticeGainReport> lattice_gain;   // what FlattenLatticeGain found; none when it did not run
-  std::map<std::string, double> seconds;           // wall time per step
-  std::map<std::string, double> cpu_seconds;       // CPU time per step, all threads
-  std::map<std::string, double> resident_mb;       // the process's resident memory at the end of each step
-  std::map<std::string, double> peak_resident_mb;  // the process's peak resident memory up to the end of each step
+  std::optional<LatticeGainReport> lattice_gain;       // what FlattenLatticeGain found; none when it did not run
+  std::optional<JpegBlockGainReport> jpeg_block_gain;  // what FlattenJpegBlockGain found; none when it did not run
+  std::map<std::string, double> seconds;               // wall time per step
+  std::map<std::string, double> cpu_seconds;           // CPU time per step, all threads
+  std::map<std::string, double> resident_mb;           // the process's resident memory at the end of each step
+  std::map<std::string, double> peak_resident_mb;      // the process's peak resident memory up to the end of each step
   nlohmann::json ToJson() const;
 };
 

@@ -57,6 +57,7 @@ struct RawInput {
   bool has_camera_metadata = false;  // false: a plain image without --camera (no optics, no colour)
   std::string levels;                // where the black and white levels came from, for the one-line report
   nlohmann::json jpeg_restoration;   // what RestoreJpegMosaic did (null: not a greyscale JPEG, or not asked)
+  int jpeg_block = 0;                // a mosaic stored as JPEG: its block size in pixels (8); 0 for lossless files
   double unpack_seconds = 0.0;       // of the time to open it, unpacking the raw packing into 16-bit samples
 };
 
