@@ -12,18 +12,10 @@
 #include <vector>
 
 #include "lfsp/core/srgb.h"
-
 namespace lfsp::decode {
 namespace {
 
-constexpr int kBins = 32;  // over the block's height
-// Brightness classes (quarters of the view's lit pixels by local mean), each with its own gain: the quantization
-// error is a matter of codes, so its share of a sample depends on how bright the sample is. On the simulated dark
-// F01 JPEG capture one class for all took the error at the blocks' beat in colour from 46.0 to 37.6 (x1e-4), four
-// to 35.7, and the whole error from 503 to 501 and 487; on IMG_3 the per-pixel disparity's peak at the beat read 4.7
-// with one class, 3.0 with four.
-constexpr int kClasses = 4;
-constexpr int kCells = kClasses * kBins;
+constexpr int kBins = 32;                       // over the block's height
 constexpr int kRounds = 3;                      // each measures what the last one left
 constexpr double kReferenceSigmaRows = 6.0;     // the local mean: wider than half the 13-14 row cycle...
 constexpr double kReferenceSigmaColumns = 2.0;  // ...and narrow along the row, where the scene changes fastest
@@ -65,102 +57,56 @@ std::array<double, kBins> SmoothPeriodic(const std::array<double, kBins>& values
   return smoothed;
 }
 
-using ChannelGains = std::array<std::array<double, kCells>, 3>;
+using ChannelGains = std::array<std::array<double, kBins>, 3>;
 
-// The local mean of each lit pixel's channels (the view's lit pixels blurred, over the blurred coverage); 0 where
-// nothing lit is near.
-cv::Mat LocalMean(const cv::Mat& rgb, const cv::Mat& lit, const cv::Mat& coverage) {
-  cv::Mat masked = cv::Mat::zeros(rgb.size(), rgb.type()), blurred;
-  rgb.copyTo(masked, lit);
-  cv::GaussianBlur(masked, blurred, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows, cv::BORDER_REFLECT);
-  for (int y = 0; y < rgb.rows; ++y) {
-    auto* m = blurred.ptr<cv::Vec3f>(y);
-    const float* c = coverage.ptr<float>(y);
-    for (int x = 0; x < rgb.cols; ++x) m[x] = c[x] > 1e-3f ? m[x] / c[x] : cv::Vec3f(0.0f, 0.0f, 0.0f);
-  }
-  return blurred;
-}
-
-// Each pixel's brightness class per channel (CV_8UC3): which quarter of the lit pixels' local means it falls in.
-cv::Mat BrightnessClasses(const cv::Mat& local, const cv::Mat& lit) {
-  std::array<std::vector<float>, 3> levels;
-  for (int y = 0; y < local.rows; ++y) {
-    const auto* m = local.ptr<cv::Vec3f>(y);
-    const std::uint8_t* l = lit.ptr<std::uint8_t>(y);
-    for (int x = 0; x < local.cols; ++x)
-      if (l[x])
-        for (int ch = 0; ch < 3; ++ch) levels[static_cast<std::size_t>(ch)].push_back(m[x][ch]);
-  }
-  std::array<std::array<float, kClasses - 1>, 3> bounds{};
-  for (std::size_t ch = 0; ch < 3; ++ch) {
-    std::vector<float>& values = levels[ch];
-    if (values.empty()) continue;
-    for (int q = 1; q < kClasses; ++q) {
-      const auto at = values.begin() + static_cast<std::ptrdiff_t>(values.size() * q / kClasses);
-      std::nth_element(values.begin(), at, values.end());
-      bounds[ch][static_cast<std::size_t>(q - 1)] = *at;
-    }
-  }
-  cv::Mat classes(local.size(), CV_8UC3);
-  for (int y = 0; y < local.rows; ++y) {
-    const auto* m = local.ptr<cv::Vec3f>(y);
-    auto* out = classes.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < local.cols; ++x)
-      for (int ch = 0; ch < 3; ++ch) {
-        const auto& b = bounds[static_cast<std::size_t>(ch)];
-        out[x][ch] = static_cast<std::uint8_t>(std::upper_bound(b.begin(), b.end(), m[x][ch]) - b.begin());
-      }
-  }
-  return classes;
-}
-
-// The gain of each channel by brightness class and bin: the mean ratio of the lit pixels to their local mean,
-// smoothed over the bins of each class as a normalised convolution, normalised so that the lit pixels keep their
-// mean. A channel whose every cell has too few samples keeps gain 1; false when none was measured.
-bool MeasureGains(const cv::Mat& rgb, const cv::Mat& lit, const cv::Mat& local, const cv::Mat& classes,
+// The gain of each channel by bin: its mean ratio to the local mean (the view's lit pixels blurred, over the blurred
+// coverage), smoothed over the bins as a normalised convolution, normalised so that the lit pixels keep their mean.
+// A channel whose every bin has too few samples keeps gain 1; false when none was measured.
+bool MeasureGains(const cv::Mat& rgb, const cv::Mat& lit, const cv::Mat& coverage,
                   const std::vector<std::uint8_t>& bins, ChannelGains& gains) {
-  std::array<std::array<double, kCells>, 3> sums{}, counts{}, lit_pixels{};
+  cv::Mat masked = cv::Mat::zeros(rgb.size(), rgb.type()), reference;
+  rgb.copyTo(masked, lit);
+  cv::GaussianBlur(masked, reference, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows, cv::BORDER_REFLECT);
+  std::array<std::array<double, kBins>, 3> sums{}, counts{};
   const int margin = static_cast<int>(std::ceil(kReferenceSigmaRows));  // rows the blur reflects into
-  for (int y = 0; y < rgb.rows; ++y) {
+  for (int y = margin; y < rgb.rows - margin; ++y) {
     const auto* value = rgb.ptr<cv::Vec3f>(y);
-    const auto* m = local.ptr<cv::Vec3f>(y);
-    const auto* k = classes.ptr<cv::Vec3b>(y);
+    const auto* r = reference.ptr<cv::Vec3f>(y);
+    const float* c = coverage.ptr<float>(y);
     const std::uint8_t* l = lit.ptr<std::uint8_t>(y);
     const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(rgb.cols);
-    const bool inside = y >= margin && y < rgb.rows - margin;
     for (int x = 0; x < rgb.cols; ++x) {
-      if (!l[x]) continue;
+      if (!l[x] || !(c[x] > 1e-3f)) continue;
       for (int ch = 0; ch < 3; ++ch) {
-        const auto cell = static_cast<std::size_t>(k[x][ch] * kBins + b[x]);
-        lit_pixels[static_cast<std::size_t>(ch)][cell] += 1.0;
-        const double level = m[x][ch];
-        if (!inside || !(level >= kMinLevel)) continue;
+        const double level = r[x][ch] / c[x];
+        if (!(level >= kMinLevel)) continue;
         const double ratio = value[x][ch] / level;
         if (!(std::abs(ratio - 1.0) <= kEdge)) continue;  // edges, and NaN
-        sums[static_cast<std::size_t>(ch)][cell] += ratio;
-        counts[static_cast<std::size_t>(ch)][cell] += 1.0;
+        sums[static_cast<std::size_t>(ch)][b[x]] += ratio;
+        counts[static_cast<std::size_t>(ch)][b[x]] += 1.0;
       }
     }
+  }
+  // Normalised over every lit pixel (not only those measured), so the view keeps its brightness.
+  std::array<double, kBins> lit_pixels{};
+  for (int y = 0; y < rgb.rows; ++y) {
+    const std::uint8_t* l = lit.ptr<std::uint8_t>(y);
+    const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(rgb.cols);
+    for (int x = 0; x < rgb.cols; ++x)
+      if (l[x]) lit_pixels[b[x]] += 1.0;
   }
   bool measured = false;
   for (std::size_t ch = 0; ch < 3; ++ch) {
-    std::array<double, kCells>& gain = gains[ch];
+    std::array<double, kBins>& gain = gains[ch];
     gain.fill(1.0);
     if (*std::max_element(counts[ch].begin(), counts[ch].end()) < kMinSamples) continue;
-    for (std::size_t first = 0; first < kCells; first += kBins) {
-      std::array<double, kBins> class_sums{}, class_counts{};
-      std::copy_n(sums[ch].begin() + static_cast<std::ptrdiff_t>(first), kBins, class_sums.begin());
-      std::copy_n(counts[ch].begin() + static_cast<std::ptrdiff_t>(first), kBins, class_counts.begin());
-      const std::array<double, kBins> smoothed_sums = SmoothPeriodic(class_sums);
-      const std::array<double, kBins> smoothed_counts = SmoothPeriodic(class_counts);
-      for (std::size_t k = 0; k < kBins; ++k)
-        gain[first + k] = smoothed_counts[k] > 1e-9 ? smoothed_sums[k] / smoothed_counts[k] : 1.0;
-    }
-    // Normalised over every lit pixel (not only those measured), so the view keeps its brightness.
+    const std::array<double, kBins> smoothed_sums = SmoothPeriodic(sums[ch]);
+    const std::array<double, kBins> smoothed_counts = SmoothPeriodic(counts[ch]);
     double weighted = 0.0, pixels = 0.0;
-    for (std::size_t cell = 0; cell < kCells; ++cell) {
-      weighted += gain[cell] * lit_pixels[ch][cell];
-      pixels += lit_pixels[ch][cell];
+    for (std::size_t k = 0; k < kBins; ++k) {
+      gain[k] = smoothed_counts[k] > 1e-9 ? smoothed_sums[k] / smoothed_counts[k] : 1.0;
+      weighted += gain[k] * lit_pixels[k];
+      pixels += lit_pixels[k];
     }
     if (!(weighted > 0.0)) {
       gain.fill(1.0);
@@ -205,45 +151,33 @@ JpegBlockGainReport FlattenJpegBlockGain(LightField& light_field, const HexLatti
     cv::Mat lit_float, coverage;
     lit.convertTo(lit_float, CV_32F, 1.0 / 255.0);
     cv::GaussianBlur(lit_float, coverage, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows, cv::BORDER_REFLECT);
-    // What each sample has been divided by, over the rounds (for the report).
-    cv::Mat divided(rgb.size(), CV_32FC3, cv::Scalar::all(1.0));
+    ChannelGains total;
+    for (auto& channel_total : total) channel_total.fill(1.0);
     bool measured = false;
     for (int round = 0; round < kRounds; ++round) {
-      const cv::Mat local = LocalMean(rgb, lit, coverage);
-      const cv::Mat classes = BrightnessClasses(local, lit);
       ChannelGains gains;
-      if (!MeasureGains(rgb, lit, local, classes, bins, gains)) break;
+      if (!MeasureGains(rgb, lit, coverage, bins, gains)) break;
       measured = true;
+      std::array<cv::Vec3f, kBins> inverse{};
+      for (std::size_t b = 0; b < kBins; ++b)
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          inverse[b][static_cast<int>(ch)] = static_cast<float>(1.0 / gains[ch][b]);
+          total[ch][b] *= gains[ch][b];
+        }
       for (int y = 0; y < shape.height; ++y) {
         auto* row = rgb.ptr<cv::Vec3f>(y);
-        auto* total = divided.ptr<cv::Vec3f>(y);
-        const auto* k = classes.ptr<cv::Vec3b>(y);
         const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
-        for (int x = 0; x < shape.width; ++x)
-          for (int ch = 0; ch < 3; ++ch) {
-            const auto gain = static_cast<float>(
-                gains[static_cast<std::size_t>(ch)][static_cast<std::size_t>(k[x][ch] * kBins + b[x])]);
-            row[x][ch] /= gain;
-            total[x][ch] *= gain;
-          }
+        for (int x = 0; x < shape.width; ++x) row[x] = row[x].mul(inverse[b[x]]);
       }
     }
     if (!measured) continue;
     double squares = 0.0, worst = 0.0;
-    long count = 0;
-    for (int y = 0; y < shape.height; ++y) {
-      const auto* total = divided.ptr<cv::Vec3f>(y);
-      const std::uint8_t* l = lit.ptr<std::uint8_t>(y);
-      for (int x = 0; x < shape.width; ++x)
-        if (l[x])
-          for (int ch = 0; ch < 3; ++ch) {
-            const double deviation = total[x][ch] - 1.0;
-            squares += deviation * deviation;
-            worst = std::max(worst, std::abs(deviation));
-            ++count;
-          }
-    }
-    rms[static_cast<std::size_t>(k)] = count > 0 ? std::sqrt(squares / static_cast<double>(count)) : 0.0;
+    for (const auto& channel_total : total)
+      for (const double g : channel_total) {
+        squares += (g - 1.0) * (g - 1.0);
+        worst = std::max(worst, std::abs(g - 1.0));
+      }
+    rms[static_cast<std::size_t>(k)] = std::sqrt(squares / (3.0 * kBins));
     largest[static_cast<std::size_t>(k)] = worst;
   }
   for (int k = 0; k < views; ++k) {
