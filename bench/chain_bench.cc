@@ -60,9 +60,11 @@ std::string SameContent(const fs::path& a, const fs::path& b) {
                x.disparity.has_value() == y.disparity.has_value() && x.labels.has_value() == y.labels.has_value();
   if (equal && lx.HasWeights()) equal = same(lx.weights().data(), ly.weights().data(), lx.weights().size());
   if (equal && x.disparity)
-    equal = same(x.disparity->data(), y.disparity->data(),
+    equal = x.disparity->width() == y.disparity->width() && x.disparity->height() == y.disparity->height() &&
+            same(x.disparity->data(), y.disparity->data(),
                  static_cast<std::size_t>(x.disparity->width()) * static_cast<std::size_t>(x.disparity->height()));
-  if (equal && x.labels) equal = same(x.labels->data(), y.labels->data(), x.labels->size());
+  if (equal && x.labels)
+    equal = x.labels->size() == y.labels->size() && same(x.labels->data(), y.labels->data(), x.labels->size());
   return equal ? "same content" : "DIFFERENT content";
 }
 

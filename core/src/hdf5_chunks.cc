@@ -75,7 +75,8 @@ bool DeflateChunk(const std::vector<std::uint8_t>& in, std::size_t planes, int l
   if (!compressor) return false;
   const std::size_t plane_bytes = planes > 0 ? in.size() / planes : 0;
   std::size_t stored = 0;  // bytes of the leading planes that deflate would not shrink
-  while (stored < in.size() && LooksIncompressible(compressor.get(), in.data() + stored, plane_bytes))
+  while (plane_bytes > 0 && stored < in.size() &&
+         LooksIncompressible(compressor.get(), in.data() + stored, plane_bytes))
     stored += plane_bytes;
   if (stored == 0) {
     out.resize(libdeflate_zlib_compress_bound(compressor.get(), in.size()));
@@ -86,8 +87,8 @@ bool DeflateChunk(const std::vector<std::uint8_t>& in, std::size_t planes, int l
   out.assign({0x78, 0x01});  // zlib header: deflate, 32 KiB window, fastest compression (a multiple of 31)
   AppendStoredBlocks(in.data(), stored, out);
   const std::size_t rest = in.size() - stored;
-  // The deflated rest ends the stream with its final block; a chunk of noise alone ends with an empty final stored
-  // block.
+  // The deflated rest ends the stream with its final block; for a chunk of noise alone libdeflate writes an empty
+  // final block.
   const std::size_t header = out.size();
   out.resize(header + libdeflate_deflate_compress_bound(compressor.get(), rest));
   const std::size_t size =

@@ -1,11 +1,11 @@
 #include "hdf5_contiguous.h"
 
-#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
-#include <filesystem>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -32,29 +32,31 @@ bool StoredContiguously(hid_t dataset, hid_t memory_type, std::size_t count) {
          H5Dget_storage_size(dataset) == count * H5Tget_size(memory_type);
 }
 
-// The name the file holding `dataset` was opened by ("" if HDF5 cannot say).
-std::string FileNameOf(hid_t dataset) {
-  const hid_t file = H5Iget_file_id(dataset);
-  if (file < 0) return "";
-  const ssize_t length = H5Fget_name(file, nullptr, 0);
-  std::string path(length > 0 ? static_cast<std::size_t>(length) : 0, '\0');
-  if (length > 0 && H5Fget_name(file, path.data(), path.size() + 1) != length) path.clear();
-  H5Fclose(file);
-  return path;
-}
-
-class ReadOnlyFile {
+// The file holding a dataset, with HDF5's own descriptor of it: the very file HDF5 read the dataset's layout from,
+// whatever has since happened to its name (a bundle renamed over it, a relative path). The descriptor is -1 unless
+// the file was opened with the default (sec2) driver, whose handle is a POSIX descriptor; pread on it is safe from
+// several threads.
+class FileOf {
  public:
-  explicit ReadOnlyFile(const std::string& path) : fd_(open(path.c_str(), O_RDONLY | O_CLOEXEC)) {}
-  ~ReadOnlyFile() {
-    if (fd_ >= 0) close(fd_);
+  explicit FileOf(hid_t dataset) : file_(H5Iget_file_id(dataset)) {
+    if (file_ < 0) return;
+    const hid_t access = H5Fget_access_plist(file_);
+    const bool sec2 = access >= 0 && H5Pget_driver(access) == H5FD_SEC2;
+    if (access >= 0) H5Pclose(access);
+    void* handle = nullptr;
+    if (sec2 && H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
+      fd_ = *static_cast<int*>(handle);
   }
-  ReadOnlyFile(const ReadOnlyFile&) = delete;
-  ReadOnlyFile& operator=(const ReadOnlyFile&) = delete;
+  ~FileOf() {
+    if (file_ >= 0) H5Fclose(file_);
+  }
+  FileOf(const FileOf&) = delete;
+  FileOf& operator=(const FileOf&) = delete;
   int fd() const { return fd_; }
 
  private:
-  int fd_;
+  hid_t file_;
+  int fd_ = -1;
 };
 
 }  // namespace
@@ -62,22 +64,21 @@ class ReadOnlyFile {
 bool ReadContiguous(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name) {
   if (count == 0 || !StoredContiguously(dataset, memory_type, count)) return false;
   const haddr_t offset = H5Dget_offset(dataset);  // from the beginning of the file, past any user block
-  const std::string path = FileNameOf(dataset);
-  std::error_code ec;
-  const std::uintmax_t file_bytes = path.empty() ? 0 : std::filesystem::file_size(path, ec);
-  if (offset == HADDR_UNDEF || path.empty() || ec) return false;
+  const FileOf file(dataset);
+  struct stat status {};
+  if (offset == HADDR_UNDEF || file.fd() < 0 || fstat(file.fd(), &status) != 0) return false;
+  const auto file_bytes = static_cast<std::uintmax_t>(status.st_size);
   const std::size_t bytes = count * H5Tget_size(memory_type);
   if (offset > file_bytes || bytes > file_bytes - offset)
     ThrowFileError(name, "declares " + std::to_string(bytes) + " bytes at offset " + std::to_string(offset) +
                              ", beyond the end of the " + std::to_string(file_bytes) + "-byte file");
-  const ReadOnlyFile file(path);
-  if (file.fd() < 0) return false;
   constexpr std::size_t kPiece = std::size_t{16} << 20;
   auto* out = static_cast<char*>(destination);
   ParallelFor(static_cast<int>((bytes + kPiece - 1) / kPiece), [&](int piece) {
     const std::size_t begin = static_cast<std::size_t>(piece) * kPiece, end = std::min(bytes, begin + kPiece);
     for (std::size_t done = begin; done < end;) {
       const ssize_t got = pread(file.fd(), out + done, end - done, static_cast<off_t>(offset + done));
+      if (got < 0 && errno == EINTR) continue;
       if (got <= 0) ThrowFileError(name, "reading " + std::to_string(end - done) + " bytes failed");
       done += static_cast<std::size_t>(got);
     }
