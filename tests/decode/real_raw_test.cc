@@ -118,18 +118,6 @@ TEST(RealRawGrid, WhiteImageCropMatchesLfToolboxCentres) {
   RecordProperty("median_px", std::to_string(Quantile(d, 0.5)));
 }
 
-// The lattice of a decode summary's "grid".
-HexLattice LatticeOf(const nlohmann::json& grid) {
-  HexLattice lattice;
-  lattice.spacing_x = grid["spacing_x"];
-  lattice.spacing_y = grid["spacing_y"];
-  lattice.rotation = grid["rotation"];
-  lattice.origin_x = grid["origin_x"];
-  lattice.origin_y = grid["origin_y"];
-  lattice.row_shift = grid["row_shift"];
-  return lattice;
-}
-
 // Channel means (R, G, B) of the centre view, as stored (sRGB): of every pixel, or of the brightest `share` of them
 // (by R + G + B).
 std::array<double, 3> CentreMeans(const LightField& light_field, double share = 1.0) {
@@ -184,8 +172,9 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
     // does not follow the blocks: on IMG_3 it sits on the veins of the leaf at the right, moves between views with the
     // scene's parallax, and keeps one phase across the width, where the blocks' rows turn through two cycles
     // (BENCHMARKS.md). The simulator's ground truth of two-horses, without any JPEG, reads 3.7 on the same measure.
-    const double block_locked = BlockRowLuminance(result.light_field, shape.Centre(), LatticeOf(result.summary["grid"]),
-                                                  result.light_field.metadata["decode"]["view_step_pixels"]);
+    const double block_locked =
+        BlockRowLuminance(result.light_field, shape.Centre(), LensletGrid::FromJson(result.summary["grid"], frame),
+                          result.light_field.metadata["decode"]["view_step_pixels"]);
     const double bands = result.summary["decode"]["centre_bands"]["chroma"].get<double>();
     const double luma_bands = result.summary["decode"]["centre_bands"]["luma"].get<double>();
     RecordProperty(std::string(frame) + "_block_locked_luma_percent", std::to_string(block_locked));

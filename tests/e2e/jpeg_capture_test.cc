@@ -6,6 +6,7 @@
 
 #include "lfsp/core/load.h"
 #include "lfsp/decode/jpeg_block_gain.h"
+#include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/view_quality.h"
 #include "test_support.h"
 
@@ -21,17 +22,6 @@ struct Decoded {
   double block_rows = 0.0;  // BlockRowLuminance of the centre view, % of the local level
 };
 
-HexLattice LatticeOf(const nlohmann::json& grid) {
-  HexLattice lattice;
-  lattice.spacing_x = grid["spacing_x"];
-  lattice.spacing_y = grid["spacing_y"];
-  lattice.rotation = grid["rotation"];
-  lattice.origin_x = grid["origin_x"];
-  lattice.origin_y = grid["origin_y"];
-  lattice.row_shift = grid["row_shift"];
-  return lattice;
-}
-
 Decoded DecodeAndScore(const std::filesystem::path& mosaic, const std::filesystem::path& out, const LightField& truth,
                        const std::string& restore_iterations) {
   const auto result = RunLfsp({"-q", "decode", mosaic.string(), "--camera", "f01", "--colour", "linear",
@@ -40,7 +30,8 @@ Decoded DecodeAndScore(const std::filesystem::path& mosaic, const std::filesyste
   const LightField decoded = LoadLightField(out).light_field;
   const nlohmann::json summary = lfsp::testing::LoadJson(out.parent_path() / (out.stem().string() + ".summary.json"));
   return {decode::CompareCentreWithTruth(decoded, truth), decode::ChromaBandRatio(decoded, decoded.shape().Centre()),
-          decode::BlockRowLuminance(decoded, decoded.shape().Centre(), LatticeOf(summary["grid"]),
+          decode::BlockRowLuminance(decoded, decoded.shape().Centre(),
+                                    decode::LensletGrid::FromJson(summary["grid"], out.string()),
                                     decoded.metadata["decode"]["view_step_pixels"])};
 }
 
