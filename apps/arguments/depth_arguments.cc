@@ -30,11 +30,12 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
-      ->add_option("--halves-agree", method.cost.halves_agree_labels,
-                   "Near an edge, where the two halves' best labels lie within N labels of each other no occluder "
-                   "hides the pixel and the whole patch stays; otherwise the half whose best label costs less "
-                   "replaces it; -1 = the lower envelope of the two halves (the rule before 2026-12-06, which read "
-                   "thin foreground bars nearer than they are)")
+      ->add_option(
+          "--halves-agree", method.cost.halves_agree_labels,
+          "Near an edge, -1 = the lower envelope of the two halves of the angular patch; N >= 0 = where the two "
+          "halves' best labels lie within N labels of each other the whole patch stays, elsewhere only the half "
+          "whose best label costs less replaces it (reads thin bars right on clean renderings, but spreads the "
+          "foreground on lenslet decodes)")
       ->capture_default_str()
       ->check(CLI::Range(-1, 1024));
   command

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -21,31 +22,53 @@
 namespace lfsp::depth {
 namespace {
 
-struct Scored {
+struct Rendered {
   simulate::RenderedLightField rendered;
-  EvaluationMasks masks;
+  EvaluationMasks masks;  // the simulator's regions
+};
+
+Rendered Render(const char* scene) {
+  simulate::RenderOptions options;
+  options.width = options.height = 512;
+  Rendered r{simulate::RenderLightField(simulate::BuiltinScene(scene), options), {}};
+  const simulate::SceneEvaluationMasks regions = simulate::EvaluationMasksOf(r.rendered, simulate::BuiltinScene(scene));
+  const char* source = "the simulator's geometry";
+  r.masks = {regions.discontinuities, regions.planes, regions.smooth_surfaces, source, source, source};
+  return r;
+}
+
+struct Scored {
   DisparityMap disparity;
   DepthEvaluation evaluation;
 };
 
-Scored RenderAndScore(const char* scene) {
-  simulate::RenderOptions options;
-  options.width = options.height = 512;
-  Scored scored{simulate::RenderLightField(simulate::BuiltinScene(scene), options), {}, {}, {}};
-  const DisparityMap& gt = scored.rendered.disparity;
-  const simulate::SceneEvaluationMasks regions =
-      simulate::EvaluationMasksOf(scored.rendered, simulate::BuiltinScene(scene));
-  const char* source = "the simulator's geometry";
-  scored.masks = {regions.discontinuities, regions.planes, regions.smooth_surfaces, source, source, source};
-  const DepthResult result = EstimateDepth(scored.rendered.light_field, {});
-  scored.evaluation = EvaluateDisparity(result.disparity, gt, MetricOptions{}, scored.masks, &result.confidence);
-  scored.disparity = result.disparity;
-  return scored;
+Scored EstimateAndScore(const Rendered& r, const DepthOptions& options = {}) {
+  const DepthResult result = EstimateDepth(r.rendered.light_field, options);
+  return {result.disparity,
+          EvaluateDisparity(result.disparity, r.rendered.disparity, MetricOptions{}, r.masks, &result.confidence)};
+}
+
+// The median over rows 40..469 of each column of the 4 px bar (at 0.40 px), less the truth: the largest.
+double FourPixelBarOffset(const DisparityMap& gt, const DisparityMap& disparity) {
+  int bar_begin = 0;
+  for (int x = 0, run = 0; x < 512; ++x) {
+    run = gt.at(240, x) > 0.0f ? run + 1 : 0;
+    if (run == 4 && (x + 1 == 512 || gt.at(240, x + 1) <= 0.0f)) bar_begin = x - 3;
+  }
+  EXPECT_GT(bar_begin, 0);
+  double worst = 0.0;
+  for (int x = bar_begin; x < bar_begin + 4; ++x) {
+    std::vector<float> column;
+    for (int y = 40; y < 470; ++y) column.push_back(disparity.at(y, x));
+    std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
+    worst = std::max(worst, std::abs(static_cast<double>(column[column.size() / 2] - gt.at(240, x))));
+  }
+  return worst;
 }
 
 TEST(OcclusionEdges, BarsOfEveryWidthStandInFrontOfEachWall) {
-  const Scored bars = RenderAndScore("bars");
-  const DisparityMap& gt = bars.rendered.disparity;
+  const Rendered rendered = Render("bars");
+  const DisparityMap& gt = rendered.rendered.disparity;
   // Along the middle of each wall, count the runs of bar pixels (disparity above every wall's) and their widths.
   for (const int row : {80, 240, 470}) {
     std::vector<int> widths;
@@ -63,38 +86,44 @@ TEST(OcclusionEdges, BarsOfEveryWidthStandInFrontOfEachWall) {
   // Every jump of this scene is between two objects, so the simulator's discontinuities are exactly the ones
   // derived from the ground truth; and every surface is flat.
   const EvaluationMasks derived = DeriveEvaluationMasks(gt, MetricOptions{});
-  EXPECT_EQ(cv::countNonZero(bars.masks.discontinuities != derived.discontinuities), 0);
-  EXPECT_EQ(cv::countNonZero(bars.masks.smooth_surfaces), 0);
-  // The 4 px bar at 0.4 px, column by column, over the three walls: the lower envelope of the two halves of the
-  // angular patch (CostOptions::halves_agree_labels -1) read it at 0.45-0.47.
-  int bar_begin = 0;
-  for (int x = 0, run = 0; x < 512; ++x) {
-    run = gt.at(240, x) > 0.0f ? run + 1 : 0;
-    if (run == 4 && (x + 1 == 512 || gt.at(240, x + 1) <= 0.0f)) bar_begin = x - 3;
-  }
-  ASSERT_GT(bar_begin, 0);
-  for (int x = bar_begin; x < bar_begin + 4; ++x) {
-    std::vector<float> column;
-    for (int y = 40; y < 470; ++y) column.push_back(bars.disparity.at(y, x));
-    std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
-    EXPECT_NEAR(column[column.size() / 2], gt.at(240, x), 0.03) << "column " << x;  // 0.40 each
-  }
+  EXPECT_EQ(cv::countNonZero(rendered.masks.discontinuities != derived.discontinuities), 0);
+  EXPECT_EQ(cv::countNonZero(rendered.masks.smooth_surfaces), 0);
+  const Scored bars = EstimateAndScore(rendered);
   const DepthEvaluation& e = bars.evaluation;
-  EXPECT_LE(e.near_discontinuities.badpix_007, 3.6);  // 2.85 % (4.19 before the halves' agreement rule)
-  EXPECT_LE(e.all.badpix_007, 1.4);                   // 1.05 % (1.54)
-  EXPECT_LE(e.fattening_near_discontinuities, 70.0);  // 56 % (65)
+  EXPECT_LE(e.near_discontinuities.badpix_007, 5.5);  // 4.19 %
+  EXPECT_LE(e.all.badpix_007, 2.2);                   // 1.54 %
+  EXPECT_LE(e.fattening_near_discontinuities, 80.0);  // 65 %
   ASSERT_TRUE(e.sparsification.has_value());
   EXPECT_LT(e.sparsification->area, 0.1);  // 0.064, oracle 0.013 (0.113 before the edge term)
 }
 
+// CostOptions::halves_agree_labels >= 0 lets a half of the angular patch stand in only where the two halves disagree:
+// on clean renderings it reads the 4 px bar right, where the default lower envelope of the two reads it 0.05-0.07 px
+// too near (the camera decodes keep the envelope: cost_volume.h).
+TEST(OcclusionEdges, HalvesThatAgreeKeepTheWholePatchOnThinBars) {
+  const Rendered rendered = Render("bars");
+  const DisparityMap& gt = rendered.rendered.disparity;
+  DepthOptions agree;
+  agree.cost.halves_agree_labels = 3;
+  const Scored envelope = EstimateAndScore(rendered), halves = EstimateAndScore(rendered, agree);
+  const double envelope_offset = FourPixelBarOffset(gt, envelope.disparity);
+  const double halves_offset = FourPixelBarOffset(gt, halves.disparity);
+  RecordProperty("envelope_bar_offset", std::to_string(envelope_offset));
+  RecordProperty("halves_bar_offset", std::to_string(halves_offset));
+  EXPECT_GT(envelope_offset, 0.04);                                   // 0.05-0.07
+  EXPECT_LT(halves_offset, 0.03);                                     // 0.00
+  EXPECT_LE(halves.evaluation.all.badpix_007, 1.4);                   // 1.05 % (envelope 1.54)
+  EXPECT_LE(halves.evaluation.near_discontinuities.badpix_007, 3.6);  // 2.85 % (4.19)
+}
+
 TEST(OcclusionEdges, SculptureHasSmoothSurfacesAndTheirRims) {
-  const Scored sculpture = RenderAndScore("sculpture");
+  const Scored sculpture = EstimateAndScore(Render("sculpture"));
   const DepthEvaluation& e = sculpture.evaluation;
   EXPECT_GT(e.smooth_surface_pixels, 70000u);         // 78306 of the ellipsoids
   EXPECT_GT(e.plane_pixels, 120000u);                 // 138270 of the wall
   EXPECT_LE(e.bumpiness_smooth_surfaces, 0.55);       // 0.38
-  EXPECT_LE(e.near_discontinuities.badpix_007, 4.0);  // 3.07 % (3.24 before the halves' agreement rule)
-  EXPECT_LE(e.all.mse_x100, 0.12);                    // 0.06 (0.08)
+  EXPECT_LE(e.near_discontinuities.badpix_007, 4.5);  // 3.24 %
+  EXPECT_LE(e.all.mse_x100, 0.15);                    // 0.09
 }
 
 // What `lfsp simulate --ideal-only` writes beside ideal.h5 is what `lfsp evaluate depth` reads back: the regions
