@@ -30,7 +30,8 @@ std::vector<MapFrequency> LensLatticeFrequencies(double spacing_x, double spacin
 std::optional<std::vector<MapFrequency>> LensLatticeFrequencies(const LightField& light_field);
 
 // The strongest of those frequencies in a map (disparity, confidence), as a power ratio: the map's power spectrum is
-// averaged over 64 x 64 blocks that overlap by half (Hann-windowed, each about its own mean; Welch's method, so that
+// averaged over 64 x 64 blocks that overlap by half, inside a 15 px frame left out as the HCI metrics leave it
+// (Hann-windowed, each about its own mean; Welch's method, so that
 // the spectrum of noise is smooth), and each frequency's power is divided by the larger of two medians around it: of
 // the 7 x 7 bins around it, and of the bins 2-4 bins nearer to and farther from zero frequency along its radius. A
 // periodic pattern is a point in the spectrum and stands above both; the edges of a scene and the streaks semi-global
@@ -40,7 +41,7 @@ struct LatticePeak {
   double ratio = 0.0;  // 0 when no frequency lies outside the lowest 2.5 bins
   MapFrequency frequency;
 };
-// Nothing for a map of fewer than two blocks (128 px) down or across, such as the bundled samples' views.
+// Nothing for a map of fewer than two blocks and the frame (158 px) down or across, such as the bundled samples' views.
 std::optional<LatticePeak> StrongestLatticePeak(const cv::Mat& map, const std::vector<MapFrequency>& frequencies);
 
 nlohmann::ordered_json ToJson(const LatticePeak& peak);
