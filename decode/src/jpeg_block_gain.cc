@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lfsp/core/srgb.h"
+#include "view_gain_common.h"
 namespace lfsp::decode {
 namespace {
 
@@ -26,20 +27,13 @@ constexpr double kMinMeanWeight = 0.05;         // views darker than this on ave
 constexpr double kMinLevel = 0.005;             // local mean below which the ratio is noise
 constexpr int kMinSamples = 20;                 // a view whose every bin has fewer is left alone
 
-// Sensor row of the lens nearest to where each decoded pixel is sampled (as LensBins in lattice_gain.cc: the
-// slicing's cubic mixes up to four lenses of the row, the nearest weighs most).
+// Sensor row of the lens nearest to where each decoded pixel is sampled (ForEachNearestLens).
 std::vector<float> LensRows(const HexLattice& lattice, int width, int height) {
   std::vector<float> rows(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  const double pitches_per_column = 0.5 * std::numbers::sqrt3;  // DecodedGeometry: x * sqrt(3)/2 along the row
-  for (int y = 0; y < height; ++y) {
-    const double shift = 0.5 * lattice.Shift(y);
-    for (int x = 0; x < width; ++x) {
-      double sx = 0.0, sy = 0.0;
-      lattice.SensorPosition(std::nearbyint(x * pitches_per_column - shift) + shift, y, 0.0, 0.0, sx, sy);
-      rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-          static_cast<float>(sy);
-    }
-  }
+  ForEachNearestLens(lattice, width, height, [&](int x, int y, double, double sy) {
+    rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
+        static_cast<float>(sy);
+  });
   return rows;
 }
 
@@ -180,13 +174,7 @@ JpegBlockGainReport FlattenJpegBlockGain(LightField& light_field, const HexLatti
     rms[static_cast<std::size_t>(k)] = std::sqrt(squares / (3.0 * kBins));
     largest[static_cast<std::size_t>(k)] = worst;
   }
-  for (int k = 0; k < views; ++k) {
-    if (rms[static_cast<std::size_t>(k)] < 0.0) continue;
-    report.rms += rms[static_cast<std::size_t>(k)];
-    report.max = std::max(report.max, largest[static_cast<std::size_t>(k)]);
-    ++report.views;
-  }
-  if (report.views > 0) report.rms /= report.views;
+  SummariseViews(rms, largest, report);
   return report;
 }
 

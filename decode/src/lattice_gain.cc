@@ -12,6 +12,8 @@
 #include <optional>
 #include <vector>
 
+#include "view_gain_common.h"
+
 namespace lfsp::decode {
 namespace {
 
@@ -39,16 +41,10 @@ int TilePhaseBin(double position) {
 // tile: 0.07 px apart on an F01, 0.3 px on an Illum).
 std::vector<std::uint8_t> LensBins(const HexLattice& lattice, int width, int height) {
   std::vector<std::uint8_t> bins(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  const double pitches_per_column = 0.5 * std::numbers::sqrt3;  // DecodedGeometry: x * sqrt(3)/2 along the row
-  for (int y = 0; y < height; ++y) {
-    const double shift = 0.5 * lattice.Shift(y);
-    std::uint8_t* row = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-    for (int x = 0; x < width; ++x) {
-      double sx = 0.0, sy = 0.0;
-      lattice.SensorPosition(std::nearbyint(x * pitches_per_column - shift) + shift, y, 0.0, 0.0, sx, sy);
-      row[x] = static_cast<std::uint8_t>(TilePhaseBin(sy) * kBins + TilePhaseBin(sx));
-    }
-  }
+  ForEachNearestLens(lattice, width, height, [&](int x, int y, double sx, double sy) {
+    bins[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
+        static_cast<std::uint8_t>(TilePhaseBin(sy) * kBins + TilePhaseBin(sx));
+  });
   return bins;
 }
 
@@ -158,13 +154,7 @@ LatticeGainReport FlattenLatticeGain(LightField& light_field, const HexLattice& 
       for (int x = 0; x < shape.width; ++x) row[x] *= inverse[b[x]];
     }
   }
-  for (int k = 0; k < views; ++k) {
-    if (rms[static_cast<std::size_t>(k)] < 0.0) continue;
-    report.rms += rms[static_cast<std::size_t>(k)];
-    report.max = std::max(report.max, largest[static_cast<std::size_t>(k)]);
-    ++report.views;
-  }
-  if (report.views > 0) report.rms /= report.views;
+  SummariseViews(rms, largest, report);
   return report;
 }
 
