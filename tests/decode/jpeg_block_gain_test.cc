@@ -13,6 +13,7 @@
 #include "lfsp/core/hex_lattice.h"
 #include "lfsp/core/light_field.h"
 #include "lfsp/decode/jpeg_block_gain.h"
+#include "textured_plane_views.h"
 
 namespace lfsp::decode {
 namespace {
@@ -52,28 +53,11 @@ float Texture(double x, double y) {
 constexpr double kAmplitude = 0.03;
 
 LightField Plane(const HexLattice& lattice, bool with_gain) {
-  LightFieldShape shape;
-  shape.nu = shape.nv = 5;
-  shape.width = 240;
-  shape.height = 180;
-  shape.channels = 3;
-  LightField light_field(shape);
-  light_field.EnableWeights(1.0f);
-  const double disparity = 0.7;
-  for (int v = 0; v < 5; ++v)
-    for (int u = 0; u < 5; ++u)
-      for (int y = 0; y < shape.height; ++y)
-        for (int x = 0; x < shape.width; ++x) {
-          const double phase = 2.0 * std::numbers::pi * BlockRow(lattice, u, v, x, y, 2) / 8.0;
-          const float value = Texture(x + disparity * (u - 2), y + disparity * (v - 2));
-          for (int c = 0; c < 3; ++c) {
-            // Each channel its own gain: the block envelope takes colour as well as brightness.
-            const double gain =
-                with_gain ? 1.0 + kAmplitude * std::cos(phase + c) + 0.3 * kAmplitude * std::cos(2 * phase) : 1.0;
-            light_field.at({u, v}, y, x, c) = static_cast<float>(value * (0.8 + 0.2 * c) * gain);
-          }
-        }
-  return light_field;
+  return testing::TexturedPlaneViews(Texture, [&](int u, int v, int x, int y, int c) {
+    // Each channel its own gain: the block envelope takes colour as well as brightness.
+    const double phase = 2.0 * std::numbers::pi * BlockRow(lattice, u, v, x, y, 2) / 8.0;
+    return with_gain ? 1.0 + kAmplitude * std::cos(phase + c) + 0.3 * kAmplitude * std::cos(2 * phase) : 1.0;
+  });
 }
 
 double RatioRms(const LightField& a, const LightField& b) {

@@ -13,6 +13,7 @@
 #include "lfsp/core/hex_lattice.h"
 #include "lfsp/core/light_field.h"
 #include "lfsp/decode/lattice_gain.h"
+#include "textured_plane_views.h"
 
 namespace lfsp::decode {
 namespace {
@@ -44,28 +45,12 @@ float Texture(double x, double y) {
 constexpr double kAmplitude = 0.005;
 
 LightField Plane(const HexLattice& lattice, bool with_gain) {
-  LightFieldShape shape;
-  shape.nu = shape.nv = 5;
-  shape.width = 240;
-  shape.height = 180;
-  shape.channels = 3;
-  LightField light_field(shape);
-  light_field.EnableWeights(1.0f);
-  const double disparity = 0.7;
-  for (int v = 0; v < 5; ++v)
-    for (int u = 0; u < 5; ++u)
-      for (int y = 0; y < shape.height; ++y)
-        for (int x = 0; x < shape.width; ++x) {
-          double sx = 0.0, sy = 0.0;
-          LensPosition(lattice, x, y, sx, sy);
-          const double gain = with_gain ? 1.0 + kAmplitude * std::cos(std::numbers::pi * sx) *
-                                                    std::cos(std::numbers::pi * sy) * (1.0 + 0.2 * (u - 2))
-                                        : 1.0;
-          const float value = Texture(x + disparity * (u - 2), y + disparity * (v - 2));
-          for (int c = 0; c < 3; ++c)
-            light_field.at({u, v}, y, x, c) = static_cast<float>(value * (0.8 + 0.2 * c) * gain);
-        }
-  return light_field;
+  return testing::TexturedPlaneViews(Texture, [&](int u, int, int x, int y, int) {
+    if (!with_gain) return 1.0;
+    double sx = 0.0, sy = 0.0;
+    LensPosition(lattice, x, y, sx, sy);
+    return 1.0 + kAmplitude * std::cos(std::numbers::pi * sx) * std::cos(std::numbers::pi * sy) * (1.0 + 0.2 * (u - 2));
+  });
 }
 
 double RatioRms(const LightField& a, const LightField& b) {
