@@ -37,6 +37,13 @@ std::vector<float> LensRows(const HexLattice& lattice, int width, int height) {
   return rows;
 }
 
+// How far view `view`'s samples lie down the sensor from their lens centres (px): the view's offset from the centre
+// view, as the slicing places them, along the lattice's column direction.
+double ViewRowOffset(const HexLattice& lattice, const LightFieldShape& shape, ViewIndex view, double view_step) {
+  const double along = (view.u - (shape.nu - 1) / 2) * view_step, across = (view.v - (shape.nv - 1) / 2) * view_step;
+  return std::sin(lattice.rotation) * along + std::cos(lattice.rotation) * across;
+}
+
 // Smooths kBins values over their periodic index.
 std::array<double, kBins> SmoothPeriodic(const std::array<double, kBins>& values) {
   std::array<double, 7> kernel{};
@@ -121,60 +128,54 @@ JpegBlockGainReport FlattenJpegBlockGain(LightField& light_field, const HexLatti
   if (!light_field.HasWeights() || shape.channels != 3 || shape.width < 32 || shape.height < 32 || block < 2)
     return report;
   const std::vector<float> lens_rows = LensRows(lattice, shape.width, shape.height);
-  const double c = std::cos(lattice.rotation), s = std::sin(lattice.rotation);
-  const int centre_u = (shape.nu - 1) / 2, centre_v = (shape.nv - 1) / 2;
-  const int views = shape.nu * shape.nv;
-  std::vector<double> rms(static_cast<std::size_t>(views), -1.0), largest(static_cast<std::size_t>(views), 0.0);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < views; ++k) {
-    const ViewIndex view{k % shape.nu, k / shape.nu};
-    const cv::Mat weight(shape.height, shape.width, CV_32F, light_field.weights().ViewData(view));
-    if (cv::mean(weight)[0] < kMinMeanWeight) continue;
-    const cv::Mat lit = weight >= kMinWeight;
-    // Where this view's samples fall down the block: the lens centre's sensor row plus the view's offset (as the
-    // slicing places them).
-    const double along = (view.u - centre_u) * view_step, across = (view.v - centre_v) * view_step;
-    const double offset = s * along + c * across;
-    std::vector<std::uint8_t> bins(lens_rows.size());
-    for (std::size_t i = 0; i < bins.size(); ++i) {
-      const double row = lens_rows[i] + offset;
-      const double phase = (row - block * std::floor(row / block)) / block;  // in [0, 1)
-      bins[i] = static_cast<std::uint8_t>(std::clamp(static_cast<int>(phase * kBins), 0, kBins - 1));
-    }
-    cv::Mat rgb(shape.height, shape.width, CV_32FC3, light_field.ViewData(view));
-    cv::Mat lit_float, coverage;
-    lit.convertTo(lit_float, CV_32F, 1.0 / 255.0);
-    cv::GaussianBlur(lit_float, coverage, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows, cv::BORDER_REFLECT);
-    ChannelGains total;
-    for (auto& channel_total : total) channel_total.fill(1.0);
-    bool measured = false;
-    for (int round = 0; round < kRounds; ++round) {
-      ChannelGains gains;
-      if (!MeasureGains(rgb, lit, coverage, bins, gains)) break;
-      measured = true;
-      std::array<cv::Vec3f, kBins> inverse{};
-      for (std::size_t b = 0; b < kBins; ++b)
-        for (std::size_t ch = 0; ch < 3; ++ch) {
-          inverse[b][static_cast<int>(ch)] = static_cast<float>(1.0 / gains[ch][b]);
-          total[ch][b] *= gains[ch][b];
+  FlattenEachLitView(
+      light_field, kMinMeanWeight,
+      [&](ViewIndex view, const cv::Mat& weight) -> std::optional<ViewGainDeviation> {
+        const cv::Mat lit = weight >= kMinWeight;
+        // Where this view's samples fall down the block: the lens centre's sensor row plus the view's offset.
+        const double offset = ViewRowOffset(lattice, shape, view, view_step);
+        std::vector<std::uint8_t> bins(lens_rows.size());
+        for (std::size_t i = 0; i < bins.size(); ++i) {
+          const double row = lens_rows[i] + offset;
+          const double phase = (row - block * std::floor(row / block)) / block;  // in [0, 1)
+          bins[i] = static_cast<std::uint8_t>(std::clamp(static_cast<int>(phase * kBins), 0, kBins - 1));
         }
-      for (int y = 0; y < shape.height; ++y) {
-        auto* row = rgb.ptr<cv::Vec3f>(y);
-        const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
-        for (int x = 0; x < shape.width; ++x) row[x] = row[x].mul(inverse[b[x]]);
-      }
-    }
-    if (!measured) continue;
-    double squares = 0.0, worst = 0.0;
-    for (const auto& channel_total : total)
-      for (const double g : channel_total) {
-        squares += (g - 1.0) * (g - 1.0);
-        worst = std::max(worst, std::abs(g - 1.0));
-      }
-    rms[static_cast<std::size_t>(k)] = std::sqrt(squares / (3.0 * kBins));
-    largest[static_cast<std::size_t>(k)] = worst;
-  }
-  SummariseViews(rms, largest, report);
+        cv::Mat rgb(shape.height, shape.width, CV_32FC3, light_field.ViewData(view));
+        cv::Mat lit_float, coverage;
+        lit.convertTo(lit_float, CV_32F, 1.0 / 255.0);
+        cv::GaussianBlur(lit_float, coverage, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows,
+                         cv::BORDER_REFLECT);
+        ChannelGains total;
+        for (auto& channel_total : total) channel_total.fill(1.0);
+        bool measured = false;
+        for (int round = 0; round < kRounds; ++round) {
+          ChannelGains gains;
+          if (!MeasureGains(rgb, lit, coverage, bins, gains)) break;
+          measured = true;
+          std::array<cv::Vec3f, kBins> inverse{};
+          for (std::size_t b = 0; b < kBins; ++b)
+            for (std::size_t ch = 0; ch < 3; ++ch) {
+              inverse[b][static_cast<int>(ch)] = static_cast<float>(1.0 / gains[ch][b]);
+              total[ch][b] *= gains[ch][b];
+            }
+          for (int y = 0; y < shape.height; ++y) {
+            auto* row = rgb.ptr<cv::Vec3f>(y);
+            const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
+            for (int x = 0; x < shape.width; ++x) row[x] = row[x].mul(inverse[b[x]]);
+          }
+        }
+        if (!measured) return std::nullopt;
+        ViewGainDeviation deviation;
+        double squares = 0.0;
+        for (const auto& channel_total : total)
+          for (const double g : channel_total) {
+            squares += (g - 1.0) * (g - 1.0);
+            deviation.largest = std::max(deviation.largest, std::abs(g - 1.0));
+          }
+        deviation.rms = std::sqrt(squares / (3.0 * kBins));
+        return deviation;
+      },
+      report);
   return report;
 }
 
@@ -195,8 +196,7 @@ double BlockRowLuminance(const LightField& light_field, ViewIndex view, const He
     }
   cv::GaussianBlur(luma, local, cv::Size(), kReferenceSigmaColumns, kReferenceSigmaRows, cv::BORDER_REFLECT);
   const std::vector<float> lens_rows = LensRows(lattice, shape.width, shape.height);
-  const double along = (view.u - (shape.nu - 1) / 2) * view_step, across = (view.v - (shape.nv - 1) / 2) * view_step;
-  const double offset = std::sin(lattice.rotation) * along + std::cos(lattice.rotation) * across;
+  const double offset = ViewRowOffset(lattice, shape, view, view_step);
   std::complex<double> first = 0.0, second = 0.0;
   long count = 0;
   const int margin = static_cast<int>(std::ceil(kReferenceSigmaRows));

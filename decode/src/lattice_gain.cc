@@ -125,36 +125,33 @@ LatticeGainReport FlattenLatticeGain(LightField& light_field, const HexLattice& 
   LatticeGainReport report;
   if (!light_field.HasWeights() || shape.channels != 3 || shape.width < 32 || shape.height < 32) return report;
   const std::vector<std::uint8_t> bins = LensBins(lattice, shape.width, shape.height);
-  const int views = shape.nu * shape.nv;
-  std::vector<double> rms(static_cast<std::size_t>(views), -1.0), largest(static_cast<std::size_t>(views), 0.0);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < views; ++k) {
-    const ViewIndex view{k % shape.nu, k / shape.nu};
-    const cv::Mat weight(shape.height, shape.width, CV_32F, light_field.weights().ViewData(view));
-    if (cv::mean(weight)[0] < kMinMeanWeight) continue;
-    cv::Mat rgb(shape.height, shape.width, CV_32FC3, light_field.ViewData(view));
-    cv::Mat grey;
-    cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
-    const std::optional<MeasuredGain> measured = MeasureGain(grey, weight, bins);
-    if (!measured) continue;
-    double squares = 0.0, worst = 0.0;
-    for (const int b : measured->measured) {
-      const double deviation = measured->gain.ptr<double>()[b] - 1.0;
-      squares += deviation * deviation;
-      worst = std::max(worst, std::abs(deviation));
-    }
-    rms[static_cast<std::size_t>(k)] = std::sqrt(squares / static_cast<double>(measured->measured.size()));
-    largest[static_cast<std::size_t>(k)] = worst;
-    std::array<float, kBins * kBins> inverse{};
-    for (int b = 0; b < kBins * kBins; ++b)
-      inverse[static_cast<std::size_t>(b)] = static_cast<float>(1.0 / measured->gain.ptr<double>()[b]);
-    for (int y = 0; y < shape.height; ++y) {
-      auto* row = rgb.ptr<cv::Vec3f>(y);
-      const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
-      for (int x = 0; x < shape.width; ++x) row[x] *= inverse[b[x]];
-    }
-  }
-  SummariseViews(rms, largest, report);
+  FlattenEachLitView(
+      light_field, kMinMeanWeight,
+      [&](ViewIndex view, const cv::Mat& weight) -> std::optional<ViewGainDeviation> {
+        cv::Mat rgb(shape.height, shape.width, CV_32FC3, light_field.ViewData(view));
+        cv::Mat grey;
+        cv::transform(rgb, grey, cv::Matx13f(1.0f / 3, 1.0f / 3, 1.0f / 3));
+        const std::optional<MeasuredGain> measured = MeasureGain(grey, weight, bins);
+        if (!measured) return std::nullopt;
+        ViewGainDeviation deviation;
+        double squares = 0.0;
+        for (const int b : measured->measured) {
+          const double g = measured->gain.ptr<double>()[b] - 1.0;
+          squares += g * g;
+          deviation.largest = std::max(deviation.largest, std::abs(g));
+        }
+        deviation.rms = std::sqrt(squares / static_cast<double>(measured->measured.size()));
+        std::array<float, kBins * kBins> inverse{};
+        for (int b = 0; b < kBins * kBins; ++b)
+          inverse[static_cast<std::size_t>(b)] = static_cast<float>(1.0 / measured->gain.ptr<double>()[b]);
+        for (int y = 0; y < shape.height; ++y) {
+          auto* row = rgb.ptr<cv::Vec3f>(y);
+          const std::uint8_t* b = bins.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(shape.width);
+          for (int x = 0; x < shape.width; ++x) row[x] *= inverse[b[x]];
+        }
+        return deviation;
+      },
+      report);
   return report;
 }
 

@@ -1,15 +1,18 @@
 #pragma once
 
 // What the two per-view gain flattenings (lattice_gain.cc: the Bayer tile under each lens; jpeg_block_gain.cc: the
-// JPEG's blocks) share: where each decoded pixel's nearest lens sits on the sensor, and how their per-view figures
-// become one report.
+// JPEG's blocks) share: where each decoded pixel's nearest lens sits on the sensor, and the loop over the lit views
+// that makes their per-view figures one report.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "lfsp/core/hex_lattice.h"
+#include "lfsp/core/light_field.h"
 
 namespace lfsp::decode {
 
@@ -29,14 +32,32 @@ void ForEachNearestLens(const HexLattice& lattice, int width, int height, Visit 
   }
 }
 
-// Fills `report` (rms, max, views) from each view's rms gain deviation (negative: the view was not measured) and
-// largest deviation: the mean rms over the measured views, the largest deviation of any.
-template <class Report>
-void SummariseViews(const std::vector<double>& rms, const std::vector<double>& largest, Report& report) {
-  for (std::size_t k = 0; k < rms.size(); ++k) {
-    if (rms[k] < 0.0) continue;
-    report.rms += rms[k];
-    report.max = std::max(report.max, largest[k]);
+// What one view's flattening divided out: the rms and the largest deviation of its gain from 1.
+struct ViewGainDeviation {
+  double rms = 0.0;
+  double largest = 0.0;
+};
+
+// Runs `flatten(view, weight)` on every view whose mean ray weight reaches `min_mean_weight`, views in parallel
+// (`weight`: the view's weights as a CV_32F cv::Mat). It flattens that view in place and returns what it divided
+// out, or nothing when it measured no gain. Fills `report`: rms, the mean over the flattened views; max, the largest
+// deviation of any; views, how many.
+template <class Report, class Flatten>
+void FlattenEachLitView(LightField& light_field, double min_mean_weight, Flatten flatten, Report& report) {
+  const LightFieldShape& shape = light_field.shape();
+  const int views = shape.nu * shape.nv;
+  std::vector<std::optional<ViewGainDeviation>> deviations(static_cast<std::size_t>(views));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < views; ++k) {
+    const ViewIndex view{k % shape.nu, k / shape.nu};
+    const cv::Mat weight(shape.height, shape.width, CV_32F, light_field.weights().ViewData(view));
+    if (cv::mean(weight)[0] < min_mean_weight) continue;
+    deviations[static_cast<std::size_t>(k)] = flatten(view, weight);
+  }
+  for (const std::optional<ViewGainDeviation>& deviation : deviations) {
+    if (!deviation) continue;
+    report.rms += deviation->rms;
+    report.max = std::max(report.max, deviation->largest);
     ++report.views;
   }
   if (report.views > 0) report.rms /= report.views;
