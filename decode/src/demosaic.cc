@@ -106,46 +106,69 @@ inline void GradientPixel(const float* const* r, int x, int xm2, int xm1, int xp
 // if sampled a third of a view step towards the centre. So the one-sided estimate adds the pixel's own channel's
 // change from two pixels in (colour differences vary slowly: C(p) - K(p) = C(q) - K(q), with K(q) the mean of K(p)
 // and K two pixels in); where that pixel is under another lens too, the inner neighbour's value stands alone.
+//
+// A one-sided estimate is exact for a linear signal, but not symmetric about the pixel: on a texture it lags by a
+// fraction of its period, more for finer texture. In a micro-image the texture is finer the farther the scene lies
+// from the focal plane, so the outer views read |disparity| too small (the F01's corner views of the central 7 x 7,
+// 4.2 px out, read 1-1.7 % of their offset inwards; every strip of e2e/full_size 0.5 % closer to d = 0; issue 49).
+// So where one of the pairs is wholly under the lens, the complete pairs alone give the estimate; the one-sided
+// estimates only stand in where no pair is complete.
 class EdgeWindow {
  public:
-  EdgeWindow(const float* const* r, const std::uint8_t* const* l, const int* column)
-      : r_(r), l_(l), column_(column), lens_(l[2][column[2]]) {}
+  EdgeWindow(const float* const* r, const std::uint8_t* const* l, const int* column, bool green_centre)
+      : r_(r), l_(l), column_(column), lens_(l[2][column[2]]), green_centre_(green_centre) {}
 
-  // The estimate from the pair of neighbours at +-(dy, dx), or nullopt when neither is under the lens.
-  std::optional<float> Pair(int dy, int dx) const {
+  // The estimate from the one neighbour q of the pair at +-(dy, dx) that is under the lens, or nullopt when neither
+  // is (called for incomplete pairs): C(q) + K(p) - K(q), K being the pixel's own channel. K(q) is the mean of K
+  // on both sides of q across the pair's direction where both are under the lens (exact for a texture that varies
+  // along the pair only, at any fineness, as beside a boundary across the pair); else the mean of K(p) and K two
+  // pixels in (exact only for a linear signal).
+  std::optional<float> OneSided(int dy, int dx) const {
     const bool ahead = Inside(dy, dx), behind = Inside(-dy, -dx);
-    if (ahead && behind) return 0.5f * (At(dy, dx) + At(-dy, -dx));
     if (!ahead && !behind) return std::nullopt;
-    const int s = ahead ? 1 : -1;
-    float estimate = At(s * dy, s * dx);
-    if (Inside(2 * s * dy, 2 * s * dx)) estimate += 0.5f * (At(0, 0) - At(2 * s * dy, 2 * s * dx));
-    return estimate;
+    const int s = ahead ? 1 : -1, qy = s * dy, qx = s * dx;
+    const int ay = qy + dx, ax = qx - dy, by = qy - dx, bx = qx + dy;  // q's neighbours across the direction
+    if (SameChannel(ay, ax) && Inside(ay, ax) && Inside(by, bx))
+      return At(qy, qx) + At(0, 0) - 0.5f * (At(ay, ax) + At(by, bx));
+    if (Inside(2 * qy, 2 * qx)) return At(qy, qx) + 0.5f * (At(0, 0) - At(2 * qy, 2 * qx));
+    return At(qy, qx);
   }
 
-  // The mean of the pairs' estimates; with no neighbour under the lens, the plain mean of all of them.
+  // The mean of the complete pairs' means; without a complete pair, the mean of the one-sided estimates; with no
+  // neighbour under the lens, the plain mean of all of them.
   float Mean(std::initializer_list<std::pair<int, int>> directions) const {
-    float sum = 0.0f, all = 0.0f;
-    int count = 0;
+    float complete = 0.0f, one_sided = 0.0f, all = 0.0f;
+    int complete_count = 0, one_sided_count = 0;
     for (const auto& [dy, dx] : directions) {
       all += At(dy, dx) + At(-dy, -dx);
-      if (const std::optional<float> estimate = Pair(dy, dx)) {
-        sum += *estimate;
-        ++count;
+      if (Inside(dy, dx) && Inside(-dy, -dx)) {
+        complete += 0.5f * (At(dy, dx) + At(-dy, -dx));
+        ++complete_count;
+      } else if (const std::optional<float> estimate = OneSided(dy, dx)) {
+        one_sided += *estimate;
+        ++one_sided_count;
       }
     }
-    return count > 0 ? sum / static_cast<float>(count) : all / static_cast<float>(2 * directions.size());
+    if (complete_count > 0) return complete / static_cast<float>(complete_count);
+    if (one_sided_count > 0) return one_sided / static_cast<float>(one_sided_count);
+    return all / static_cast<float>(2 * directions.size());
   }
 
   float Centre() const { return At(0, 0); }
 
  private:
   bool Inside(int dy, int dx) const { return l_[2 + dy][column_[2 + dx]] == lens_; }
+  // Whether the pixel at (dy, dx) has the centre pixel's colour filter (green: every other pixel on the diagonals).
+  bool SameChannel(int dy, int dx) const {
+    return green_centre_ ? ((dy + dx) & 1) == 0 : ((dy & 1) == 0 && (dx & 1) == 0);
+  }
   float At(int dy, int dx) const { return r_[2 + dy][column_[2 + dx]]; }
 
   const float* const* r_;
   const std::uint8_t* const* l_;
   const int* column_;
   std::uint8_t lens_;
+  bool green_centre_;
 };
 
 inline void EdgePixel(const EdgeWindow& e, int colour, int horizontal_colour, float* out) {
@@ -201,7 +224,7 @@ cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern, const Micro
         GradientPixel(r, x, xm2, xm1, xp1, xp2, colour, horizontal_colour, out + 3 * x);
       else {
         const int column[5] = {xm2, xm1, x, xp1, xp2};
-        EdgePixel(EdgeWindow(r, l, column), colour, horizontal_colour, out + 3 * x);
+        EdgePixel(EdgeWindow(r, l, column, colour == 1), colour, horizontal_colour, out + 3 * x);
       }
     };
     auto border = [&](int x) {

@@ -1,11 +1,14 @@
 // The gradient demosaic near a micro-image's edge: the missing channels of a pixel whose outer neighbours lie under
 // the next micro-lens must stand for that pixel's own position. On a colour ramp with constant colour differences
 // the one-sided estimate is exact; copying the inner neighbour instead (as before) is a pixel off, which made the
-// F01's outer views (8, 4) read as if sampled a third of a view step towards the centre.
+// F01's outer views (8, 4) read as if sampled a third of a view step towards the centre. On a finer texture the
+// one-sided estimate is exact no longer and lags towards the lens centre, so where a pixel has a complete pair of
+// neighbours under its lens, that pair alone gives the estimate.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <opencv2/core.hpp>
 
 #include "lfsp/decode/demosaic.h"
@@ -81,6 +84,34 @@ TEST(Demosaic, TheNextMicroImageStaysOut) {
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kBoundary; ++x)
       for (int channel = 0; channel < 3; ++channel) ASSERT_LT(rgb.at<cv::Vec3f>(y, x)[channel], 1.0f);
+}
+
+// A grey texture along x (a sinusoid of period 6.7 px, as a scene 1.5 px per view step from the focal plane draws in
+// an F01 micro-image) over the ramp's lens, beside a vertical boundary: the luminance of the three columns nearest
+// the boundary must not lag behind the texture towards the lens (which made the outer views read |disparity| too
+// small). Their least-squares shift against the truth: -0.175 px when the one-sided estimates took K(q) along the
+// pair and were averaged with complete pairs; -0.152 with the complete pairs alone where there are any; -0.104 with
+// K(q) across the pair as well. What is left comes from the red of blue pixels and the blue of red ones, whose
+// colour has no pixel on q's column.
+TEST(Demosaic, AFineTextureBesideTheNextMicroLensDoesNotLagInwards) {
+  constexpr double kFrequency = 0.15;  // cycles per pixel
+  auto truth = [&](double x) { return 0.5 + 0.2 * std::sin(2.0 * M_PI * kFrequency * x + 0.4); };
+  auto slope = [&](double x) { return 0.2 * 2.0 * M_PI * kFrequency * std::cos(2.0 * M_PI * kFrequency * x + 0.4); };
+  EdgeScene scene(true, false);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kBoundary; ++x) scene.bayer.at<float>(y, x) = static_cast<float>(truth(x));
+  const cv::Mat rgb = scene.Demosaicked();
+  double along = 0.0, norm = 0.0;
+  for (int y = 4; y < kSize - 4; ++y)
+    for (int x = kBoundary - 3; x < kBoundary; ++x) {
+      const cv::Vec3f pixel = rgb.at<cv::Vec3f>(y, x);
+      const double luminance = (pixel[0] + pixel[1] + pixel[2]) / 3.0;
+      along += (luminance - truth(x)) * slope(x);
+      norm += slope(x) * slope(x);
+    }
+  const double shift = along / norm;  // luminance(x) ~ truth(x + shift)
+  std::printf("  least-squares shift of the luminance beside the boundary: %+.4f px\n", shift);
+  EXPECT_LT(std::abs(shift), 0.12);
 }
 
 }  // namespace

@@ -28,8 +28,9 @@ struct MicroImages {
 // Demosaics a single-channel float Bayer image (values >= 0, any scale up to `max_value`) into an interleaved RGB
 // float image (CV_32FC3, R first). Parallel. With `micro_images`, kGradient keeps to each micro-image: near its edge
 // it falls back to bilinear over the neighbours under the same lens, so no neighbouring micro-image leaks into the
-// outer views, and where only the inner one of a pair of neighbours is under the lens, it carries the pixel's own
-// channel's change across (tests/decode/demosaic_test.cc), so the outer views keep their place.
+// outer views; it prefers pairs of neighbours wholly under the lens, and where only the inner one of every pair is,
+// it carries the pixel's own channel's change across (tests/decode/demosaic_test.cc), so the outer views keep their
+// place.
 cv::Mat Demosaic(const cv::Mat& bayer, BayerPattern pattern, DemosaicMethod method, float max_value = 4.0f,
                  const MicroImages* micro_images = nullptr);
 
