@@ -162,8 +162,7 @@ TEST(CarriedCentroidSums, BothFramingsFromOnePassAreTheSameDoubles) {
   EXPECT_EQ(std::memcmp(both.in_frame.data(), in_frame.data(), in_frame.size() * sizeof(double)), 0);
   EXPECT_NE(both.all, both.in_frame);  // the frame does leave rays out here
   EXPECT_EQ(SelfSimilarityOfSums(both.all, both.label_count, labels.shape()), SelfSimilarity(labels, views));
-  EXPECT_EQ(SelfSimilarityOfSums(both.in_frame, both.label_count, labels.shape()),
-            SelfSimilarity(labels, views, true));
+  EXPECT_EQ(SelfSimilarityOfSums(both.in_frame, both.label_count, labels.shape()), SelfSimilarity(labels, views, true));
 }
 
 TEST(LabelsPerPixel, ByHandOnAConstantDisparityRow) {
