@@ -3,11 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
+#include "lfsp/core/parallel_for.h"
 #include "lfsp/core/shear.h"
 #include "lfsp/core/stopwatch.h"
 #include "lfsp/core/visualize.h"
@@ -44,16 +47,25 @@ RefocusStageResult RunRefocusStage(const Bundle& bundle, const RefocusStageOptio
 
   if (!options.disparities.empty()) {
     Stopwatch step;
-    nlohmann::ordered_json slices = nlohmann::ordered_json::array();
-    for (std::size_t i = 0; i < options.disparities.size(); ++i) {
-      const float disparity = options.disparities[i];
+    // Each slice is refocused on every core in turn; then the slices are encoded, written and measured a slice per
+    // core: a PNG's deflate runs on one core, and written one after the other the slices' deflate was a quarter of
+    // the stage's CPU samples (perf, full-size Illum).
+    for (const float disparity : options.disparities)
       result.slices.push_back(edit::RefocusImage(light_field, disparity, options.refocus));
-      const std::string name = FocalStackSliceName(i, disparity);
-      WriteImage(DisplayEncoded(result.slices.back(), light_field.transfer), output.temporary() / name,
+    const std::size_t count = result.slices.size();
+    std::vector<std::string> names(count);
+    std::vector<double> sharpness(count);
+    ParallelFor(static_cast<int>(count), [&](int slice) {
+      const auto i = static_cast<std::size_t>(slice);
+      names[i] = FocalStackSliceName(i, options.disparities[i]);
+      WriteImage(DisplayEncoded(result.slices[i], light_field.transfer), output.temporary() / names[i],
                  options.bit_depth);
-      slices.push_back(
-          {{"disparity", disparity}, {"file", name}, {"sharpness", edit::GradientEnergy(result.slices.back())}});
-      spdlog::info("refocused at disparity {:+.3f} -> {}", disparity, name);
+      sharpness[i] = edit::GradientEnergy(result.slices[i]);
+    });
+    nlohmann::ordered_json slices = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < count; ++i) {
+      slices.push_back({{"disparity", options.disparities[i]}, {"file", names[i]}, {"sharpness", sharpness[i]}});
+      spdlog::info("refocused at disparity {:+.3f} -> {}", options.disparities[i], names[i]);
     }
     summary["focal_stack"] = slices;
     timings["focal_stack_s"] = step.Seconds();

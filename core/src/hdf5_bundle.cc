@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <optional>
 #include <vector>
 
 #include "lfsp/core/atomic_file.h"
@@ -169,6 +171,56 @@ DisparityMap ReadDisparityDataset(const H5::H5File& file, const LightFieldShape&
   return disparity;
 }
 
+// Widens `count` 16-bit labels, read into the start of the labels' own storage, over the whole of it in place: no
+// buffer of 16-bit labels beside the labels at the decode stage's peak of memory. Label i is written over bytes
+// [4i, 4i + 4), where the 16-bit labels 2i and 2i + 1 lie, so the upper half is widened first (its writes land past
+// every 16-bit label), then the upper half of what is left, and so on: a round's writes land on labels earlier
+// rounds widened, never on the 16-bit labels it or a later round reads, so each round runs on every core.
+template <typename Narrow>
+void WidenInPlace(std::int32_t* values, std::size_t count) {
+  const auto* narrow = reinterpret_cast<const unsigned char*>(values);
+  const auto widen = [values, narrow](std::size_t i) {
+    Narrow value;
+    std::memcpy(&value, narrow + i * sizeof(Narrow), sizeof(Narrow));
+    values[i] = value;
+  };
+  std::size_t end = count;
+  while (end > 4096) {
+    const std::size_t begin = (end + 1) / 2;  // 2 begin >= end: this round's writes start past its reads
+#pragma omp parallel for
+    for (std::size_t i = begin; i < end; ++i) widen(i);
+    end = begin;
+  }
+  for (std::size_t i = end; i-- > 0;) widen(i);  // downwards, each label read before its bytes are written
+}
+
+// Every label of a 16-bit dataset (what WriteBundle and the simulator store) as it is stored, through
+// ReadViewChunks or ReadContiguous (in parallel), then widened in place: HDF5's conversion to int32 runs on one
+// thread, and the labels were filled before it wrote them (the simulator's 15x15 ground truth holds 60 M labels).
+// Empty when the dataset is stored otherwise (HDF5 then reads it).
+template <typename Narrow>
+std::optional<Labels> ReadNarrowLabels(const H5::DataSet& dataset, const H5::PredType& type,
+                                       const LightFieldShape& shape, const std::string& where) {
+  Labels labels(shape, Labels::Unfilled{});
+  const std::size_t count = labels.size();
+  if (!ReadViewChunks(dataset.getId(), type.getId(), labels.data(), count, where) &&
+      !ReadContiguous(dataset.getId(), type.getId(), labels.data(), count, where))
+    return std::nullopt;
+  WidenInPlace<Narrow>(labels.data(), count);
+  return labels;
+}
+
+std::optional<Labels> ReadSixteenBitLabels(const H5::DataSet& dataset, const LightFieldShape& shape,
+                                           const std::string& where) {
+  const H5::IntType type = dataset.getIntType();
+  if (type.getSize() != 2) return std::nullopt;
+  if (type.getSign() == H5T_SGN_NONE)  // never below kUnlabelled
+    return ReadNarrowLabels<std::uint16_t>(dataset, H5::PredType::NATIVE_UINT16, shape, where);
+  std::optional<Labels> labels = ReadNarrowLabels<std::int16_t>(dataset, H5::PredType::NATIVE_INT16, shape, where);
+  if (labels) RequireValidLabelValues(*labels, where);
+  return labels;
+}
+
 // Labels as nv x nu x H x W, or H x W for the centre view only (other views then stay unlabelled).
 Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const LightFieldShape& shape,
                          const std::string& name) {
@@ -177,10 +229,13 @@ Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const
   const std::string where = name + ": dataset " + dataset_name;
   if (dataset.getTypeClass() != H5T_INTEGER) ThrowFileError(where, "does not hold integers");
   CheckSpatialMatch(dims, shape, where);
-  Labels labels(shape);
   if (dims.size() == 4) {
     if (dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu))
       ThrowFileError(where, "has " + DimsText(dims) + " but the light field has " + ToString(shape));
+    if (std::optional<Labels> sixteen = ReadSixteenBitLabels(dataset, shape, where)) return std::move(*sixteen);
+  }
+  Labels labels(shape);
+  if (dims.size() == 4) {
     dataset.read(labels.data(), H5::PredType::NATIVE_INT32);
   } else if (dims.size() == 2) {
     dataset.read(labels.ViewData(shape.Centre()), H5::PredType::NATIVE_INT32);

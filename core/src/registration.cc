@@ -9,6 +9,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/parallel_for.h"
 #include "lfsp/core/srgb.h"
+#include "lfsp/core/srgb_table.h"
 #include "lfsp/core/view_crop.h"
 
 namespace lfsp {
@@ -16,10 +17,13 @@ namespace lfsp {
 namespace {
 
 // One least-squares step: the translation, gain and offset taking `reference` to `moving`, to first order.
+// The normal matrix is symmetric and its last unknown's coefficient is 1: its ten distinct entries are summed as
+// scalars, each as the same products in the same order as the whole 4x4 outer product was (the same doubles), in
+// a third of the time.
 cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int margin, const cv::Mat& mask) {
   // Unknowns: dx, dy, gain - 1, offset. moving - reference = -gx dx - gy dy + reference (gain - 1) + offset.
-  cv::Matx44d normal = cv::Matx44d::zeros();
-  cv::Vec4d right(0, 0, 0, 0);
+  double n00 = 0, n01 = 0, n02 = 0, n03 = 0, n11 = 0, n12 = 0, n13 = 0, n22 = 0, n23 = 0, n33 = 0;
+  double r0 = 0, r1 = 0, r2 = 0, r3 = 0;
   for (int y = margin; y < reference.rows - margin; ++y) {
     const float* up = reference.ptr<float>(y - 1);
     const float* row = reference.ptr<float>(y);
@@ -28,12 +32,26 @@ cv::Vec4d LinearisedStep(const cv::Mat& reference, const cv::Mat& moving, int ma
     const unsigned char* used = mask.empty() ? nullptr : mask.ptr<unsigned char>(y);
     for (int x = margin; x < reference.cols - margin; ++x) {
       if (used != nullptr && used[x] == 0) continue;
-      const cv::Vec4d a(-0.5 * (row[x + 1] - row[x - 1]), -0.5 * (down[x] - up[x]), row[x], 1.0);
+      const double a0 = -0.5 * (row[x + 1] - row[x - 1]), a1 = -0.5 * (down[x] - up[x]), a2 = row[x];
       const double b = other[x] - row[x];
-      normal += a * a.t();
-      right += a * b;
+      n00 += a0 * a0;
+      n01 += a0 * a1;
+      n02 += a0 * a2;
+      n03 += a0 * 1.0;
+      n11 += a1 * a1;
+      n12 += a1 * a2;
+      n13 += a1 * 1.0;
+      n22 += a2 * a2;
+      n23 += a2 * 1.0;
+      n33 += 1.0 * 1.0;
+      r0 += a0 * b;
+      r1 += a1 * b;
+      r2 += a2 * b;
+      r3 += 1.0 * b;
     }
   }
+  const cv::Matx44d normal(n00, n01, n02, n03, n01, n11, n12, n13, n02, n12, n22, n23, n03, n13, n23, n33);
+  const cv::Vec4d right(r0, r1, r2, r3);
   cv::Vec4d solution;
   if (!cv::solve(normal, right, solution, cv::DECOMP_CHOLESKY))
     throw Error("measure shift: the images hold no texture to register");
@@ -67,12 +85,13 @@ cv::Mat GreyOf(const cv::Mat& rgb) {
 cv::Mat LinearGreyOf(const cv::Mat& rgb, Transfer transfer) {
   if (transfer == Transfer::kLinear) return GreyOf(rgb);
   cv::Mat grey(rgb.rows, rgb.cols, CV_32FC1);
+  const SrgbTable& table = SrgbToLinearTable();
   for (int y = 0; y < rgb.rows; ++y) {
     const float* in = rgb.ptr<float>(y);
     float* out = grey.ptr<float>(y);
     for (int x = 0; x < rgb.cols; ++x)
-      out[x] = (SrgbToLinearTabulated(in[3 * x]) + SrgbToLinearTabulated(in[3 * x + 1]) +
-                SrgbToLinearTabulated(in[3 * x + 2])) /
+      out[x] = (SrgbToLinearTabulated(in[3 * x], table) + SrgbToLinearTabulated(in[3 * x + 1], table) +
+                SrgbToLinearTabulated(in[3 * x + 2], table)) /
                3.0f;
   }
   return grey;

@@ -1,4 +1,5 @@
 #include "lfsp/core/srgb.h"
+#include "lfsp/core/srgb_table.h"
 
 #include <algorithm>
 #include <array>
@@ -18,18 +19,16 @@ double SrgbToLinear(double encoded) {
   return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-float SrgbToLinearTabulated(float encoded) {
-  constexpr int kSegments = 4096;
-  static const std::array<float, kSegments + 1> table = [] {
-    std::array<float, kSegments + 1> t{};
-    for (int i = 0; i <= kSegments; ++i)
-      t[static_cast<std::size_t>(i)] = static_cast<float>(SrgbToLinear(static_cast<double>(i) / kSegments));
+const SrgbTable& SrgbToLinearTable() {
+  static const SrgbTable table = [] {
+    SrgbTable t{};
+    for (int i = 0; i <= kSrgbTableSegments; ++i)
+      t[static_cast<std::size_t>(i)] = static_cast<float>(SrgbToLinear(static_cast<double>(i) / kSrgbTableSegments));
     return t;
   }();
-  const float f = std::clamp(encoded, 0.0f, 1.0f) * kSegments;
-  const int i = std::min(static_cast<int>(f), kSegments - 1);
-  const float w = f - static_cast<float>(i);
-  return table[static_cast<std::size_t>(i)] * (1.0f - w) + table[static_cast<std::size_t>(i) + 1] * w;
+  return table;
 }
+
+float SrgbToLinearTabulated(float encoded) { return SrgbToLinearTabulated(encoded, SrgbToLinearTable()); }
 
 }  // namespace lfsp

@@ -91,11 +91,13 @@ LinearTaps MakeLinearTaps(int width, ImageShift shift) {
 // view). Each of the four taps around the source position counts with its bilinear coefficient times its ray weight
 // (1 without weights), and taps outside the view count zero, so rays that fall outside, or weigh nothing, never leak
 // into the result (normalised convolution).
+// The channel count is a template argument (1 to 4), so the per-channel loop is unrolled; each channel's sum is
+// the same expression, in the same order, as with a run-time count (the same floats).
+template <int channels>
 void AccumulateRowsLinear(const float* samples, const float* weights, const LightFieldShape& shape,
                           const LinearTaps& taps, int y_begin, int y_end, Accumulator& accumulator) {
   const int width = shape.width;
   const int height = shape.height;
-  const int channels = shape.channels;
   const auto inside = [height](long long j) { return j >= 0 && j < height; };
   const auto clamp = [height](long long j) { return static_cast<int>(std::clamp<long long>(j, 0, height - 1)); };
   const std::size_t row_samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
@@ -139,6 +141,22 @@ void AccumulateRowsLinear(const float* samples, const float* weights, const Ligh
   }
 }
 
+using AccumulateRows = void (*)(const float*, const float*, const LightFieldShape&, const LinearTaps&, int, int,
+                                Accumulator&);
+
+AccumulateRows AccumulateRowsLinearFor(int channels) {
+  switch (channels) {
+    case 1:
+      return AccumulateRowsLinear<1>;
+    case 2:
+      return AccumulateRowsLinear<2>;
+    case 3:
+      return AccumulateRowsLinear<3>;
+    default:
+      return AccumulateRowsLinear<4>;  // RefocusImage admits 1-4 channels
+  }
+}
+
 // Bilinear shift-and-sum: the output rows are split across threads in bands, and each band adds every view in view
 // order, so each pixel's sum has the same order whatever the thread count (the same bytes on every run), with one
 // accumulator and no merging. A band's source rows stay in cache across its rows.
@@ -154,6 +172,7 @@ cv::Mat RefocusLinear(const LightField& light_field, float disparity, bool use_r
     weights[static_cast<std::size_t>(cam)] = ViewWeights(light_field, view, use_ray_weights);
   }
   Accumulator accumulator(shape.height, shape.width, shape.channels);
+  const AccumulateRows accumulate = AccumulateRowsLinearFor(shape.channels);
   constexpr int kBandRows = 8;
   const int bands = (shape.height + kBandRows - 1) / kBandRows;
 #pragma omp parallel for schedule(dynamic)
@@ -162,9 +181,9 @@ cv::Mat RefocusLinear(const LightField& light_field, float disparity, bool use_r
     const int y_end = std::min(shape.height, y_begin + kBandRows);
     for (int cam = 0; cam < views; ++cam) {
       const cv::Mat& view_weights = weights[static_cast<std::size_t>(cam)];
-      AccumulateRowsLinear(light_field.ViewData(ViewFromCameraNumber(cam, shape.nu)),
-                           view_weights.empty() ? nullptr : view_weights.ptr<float>(0), shape,
-                           taps[static_cast<std::size_t>(cam)], y_begin, y_end, accumulator);
+      accumulate(light_field.ViewData(ViewFromCameraNumber(cam, shape.nu)),
+                 view_weights.empty() ? nullptr : view_weights.ptr<float>(0), shape,
+                 taps[static_cast<std::size_t>(cam)], y_begin, y_end, accumulator);
     }
   }
   return Normalise(accumulator.sum, accumulator.total, shape.channels);

@@ -67,15 +67,23 @@ nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const 
                            const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance) {
   const bool consistency = gt_disparity != nullptr && gt_view_disparity != nullptr;
   nlohmann::json m;
-  m["labels"] = LabelCount(labels);
-  m["centre_labels"] = CentreLabelCount(labels);
-  m["elr"] = EffectiveLabelRatio(labels);
+  // The label counts once: the effective label ratio is their quotient (EffectiveLabelRatio's).
+  const int label_count = LabelCount(labels), centre_label_count = CentreLabelCount(labels);
+  m["labels"] = label_count;
+  m["centre_labels"] = centre_label_count;
+  m["elr"] = label_count > 0 ? static_cast<double>(centre_label_count) / label_count : 0.0;
   m["compactness"] = Compactness(labels);
   // The overlap scores from one count of the overlaps, Khan's region error among them.
   std::optional<OverlapScores> overlaps;
   if (gt_labels != nullptr) overlaps = ScoreOverlaps(labels, *gt_labels);
+  // Both self-similarity definitions and both framings from one pass over the rays (six passes before).
+  std::optional<CarriedCentroids> centroids;
+  if (consistency) centroids = CarriedCentroidSumsBoth(labels, *gt_view_disparity);
   m["khan"] = ScoreKhan(labels, gt_labels, consistency ? gt_view_disparity : nullptr,
-                        overlaps ? std::optional<double>(overlaps->region_undersegmentation_error) : std::nullopt);
+                        overlaps ? std::optional<double>(overlaps->region_undersegmentation_error) : std::nullopt,
+                        centroids ? std::optional<double>(KhanSelfSimilarityOfSums(
+                                        centroids->all, centroids->label_count, labels.shape()))
+                                  : std::nullopt);
   if (gt_labels != nullptr) {
     m["boundary_recall"] = BoundaryRecall(labels, *gt_labels, boundary_tolerance);
     m["undersegmentation_error"] = overlaps->undersegmentation_error;
@@ -83,14 +91,16 @@ nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const 
     m["achievable_segmentation_accuracy"] = overlaps->achievable_segmentation_accuracy;
   }
   if (consistency) {
-    m["self_similarity"] = SelfSimilarity(labels, *gt_view_disparity);
-    m["self_similarity_in_frame"] = SelfSimilarity(labels, *gt_view_disparity, true);
+    const LightFieldShape& shape = labels.shape();
+    m["self_similarity"] = SelfSimilarityOfSums(centroids->all, centroids->label_count, shape);
+    m["self_similarity_in_frame"] = SelfSimilarityOfSums(centroids->in_frame, centroids->label_count, shape);
     const Labels reference = CarryCentreLabels(labels, *gt_disparity, *gt_view_disparity);
-    m["self_similarity_reference"] = SelfSimilarity(reference, *gt_view_disparity);
-    m["self_similarity_reference_in_frame"] = SelfSimilarity(reference, *gt_view_disparity, true);
+    const CarriedCentroids carried = CarriedCentroidSumsBoth(reference, *gt_view_disparity);
+    m["self_similarity_reference"] = SelfSimilarityOfSums(carried.all, carried.label_count, shape);
+    m["self_similarity_reference_in_frame"] = SelfSimilarityOfSums(carried.in_frame, carried.label_count, shape);
     m["labels_per_pixel"] = LabelsPerPixel(labels, *gt_disparity, *gt_view_disparity);
     // What a perfectly consistent segmentation with the same centre superpixels scores under Khan's definitions.
-    m["khan"]["self_similarity_reference"] = KhanSelfSimilarity(reference, *gt_view_disparity);
+    m["khan"]["self_similarity_reference"] = KhanSelfSimilarityOfSums(carried.all, carried.label_count, shape);
     m["khan"]["labels_per_pixel_reference"] = KhanLabelsPerPixel(reference, *gt_view_disparity);
   }
   return m;

@@ -369,24 +369,26 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
   return out;
 }
 
-std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
-                                        bool in_frame_only, std::size_t& label_count) {
+namespace {
+
+// Adds every view's rays, carried to the centre view by their disparity, to `all` and those landing inside the
+// centre view's frame to `in_frame` ([cam][label][3] each, either may be null): one read of the labels and
+// disparities serves both variants, which the evaluation asks for together. Each array receives its rays in the same
+// order whichever else is filled, so its sums are the same bytes.
+void AddCarriedRays(const Labels& labels, const std::vector<DisparityMap>& view_disparity, std::size_t k_count,
+                    double* all, double* in_frame) {
   const LightFieldShape& shape = labels.shape();
-  if (view_disparity.size() != shape.Views()) throw Error("self-similarity: need one disparity map per view");
   const ViewIndex c = shape.Centre();
-  int max_label = -1;
-  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
-  label_count = static_cast<std::size_t>(max_label + 1);
-  const std::size_t k_count = label_count;
   const int views = static_cast<int>(shape.Views());
-  std::vector<double> sums(static_cast<std::size_t>(views) * k_count * 3, 0.0);
 #pragma omp parallel for schedule(dynamic)
   for (int cam = 0; cam < views; ++cam) {
     const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
     const double du = view.u - c.u, dv = view.v - c.v;
     const std::int32_t* l = labels.ViewData(view);
     const DisparityMap& d = view_disparity[static_cast<std::size_t>(cam)];
-    double* s = sums.data() + static_cast<std::size_t>(cam) * k_count * 3;
+    const std::size_t view_offset = static_cast<std::size_t>(cam) * k_count * 3;
+    double* s_all = all == nullptr ? nullptr : all + view_offset;
+    double* s_in = in_frame == nullptr ? nullptr : in_frame + view_offset;
     for (int y = 0; y < shape.height; ++y) {
       for (int x = 0; x < shape.width; ++x) {
         const std::int32_t k = l[y * shape.width + x];
@@ -394,23 +396,53 @@ std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<
         if (k < 0 || !std::isfinite(disparity)) continue;
         const double px = x + du * disparity;  // Eq. 9 with the project's sign
         const double py = y + dv * disparity;
-        if (in_frame_only && (px < -0.5 || py < -0.5 || px > shape.width - 0.5 || py > shape.height - 0.5)) continue;
-        double* entry = s + static_cast<std::size_t>(k) * 3;
-        entry[0] += px;
-        entry[1] += py;
-        entry[2] += 1.0;
+        const std::size_t at = static_cast<std::size_t>(k) * 3;
+        if (s_all != nullptr) {
+          s_all[at] += px;
+          s_all[at + 1] += py;
+          s_all[at + 2] += 1.0;
+        }
+        if (s_in == nullptr || px < -0.5 || py < -0.5 || px > shape.width - 0.5 || py > shape.height - 0.5) continue;
+        s_in[at] += px;
+        s_in[at + 1] += py;
+        s_in[at + 2] += 1.0;
       }
     }
   }
+}
+
+// The largest label + 1 (0 if none), after checking there is a disparity map per view.
+std::size_t CarriedLabelCount(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  if (view_disparity.size() != labels.shape().Views()) throw Error("self-similarity: need one disparity map per view");
+  int max_label = -1;
+  for (std::size_t i = 0; i < labels.size(); ++i) max_label = std::max(max_label, labels.data()[i]);
+  return static_cast<std::size_t>(max_label + 1);
+}
+
+}  // namespace
+
+std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
+                                        bool in_frame_only, std::size_t& label_count) {
+  label_count = CarriedLabelCount(labels, view_disparity);
+  std::vector<double> sums(labels.shape().Views() * label_count * 3, 0.0);
+  AddCarriedRays(labels, view_disparity, label_count, in_frame_only ? nullptr : sums.data(),
+                 in_frame_only ? sums.data() : nullptr);
   return sums;
 }
 
-double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, bool in_frame_only) {
-  const LightFieldShape& shape = labels.shape();
-  const ViewIndex c = shape.Centre();
-  std::size_t k_count = 0;
-  const std::vector<double> sums = CarriedCentroidSums(labels, view_disparity, in_frame_only, k_count);
+CarriedCentroids CarriedCentroidSumsBoth(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {
+  CarriedCentroids centroids;
+  centroids.label_count = CarriedLabelCount(labels, view_disparity);
+  const std::size_t size = labels.shape().Views() * centroids.label_count * 3;
+  centroids.all.assign(size, 0.0);
+  centroids.in_frame.assign(size, 0.0);
+  AddCarriedRays(labels, view_disparity, centroids.label_count, centroids.all.data(), centroids.in_frame.data());
+  return centroids;
+}
+
+double SelfSimilarityOfSums(const std::vector<double>& sums, std::size_t k_count, const LightFieldShape& shape) {
   if (k_count == 0) return 0.0;
+  const ViewIndex c = shape.Centre();
   const int views = static_cast<int>(shape.Views());
   const int centre_cam = CameraNumber(c, shape.nu);
   double total = 0.0;
@@ -433,6 +465,12 @@ double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& vie
     ++counted;
   }
   return counted > 0 ? total / counted : 0.0;
+}
+
+double SelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity, bool in_frame_only) {
+  std::size_t k_count = 0;
+  const std::vector<double> sums = CarriedCentroidSums(labels, view_disparity, in_frame_only, k_count);
+  return SelfSimilarityOfSums(sums, k_count, labels.shape());
 }
 
 Labels FollowToCentre(const Labels& labels, const std::vector<DisparityMap>& view_disparity) {

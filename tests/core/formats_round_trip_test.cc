@@ -304,6 +304,32 @@ TEST(Hdf5Bundle, ContiguousDatasetsReadBackExactlyAcrossPieces) {
   }
 }
 
+// 16-bit labels are read as stored and widened in place in rounds (hdf5_bundle.cc): an odd count large enough for
+// several rounds, both signs, contiguous and in deflated view chunks, must read back every label exactly.
+TEST(Hdf5Bundle, SixteenBitLabelsWidenedInPlaceReadBackExactly) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = LightField({5, 5, 47, 61, 3});  // 71,675 labels
+  for (const bool negative : {false, true}) {
+    Labels labels(bundle.light_field.shape());
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      labels.data()[i] = negative ? (i % 7 == 0 ? -1 : static_cast<std::int32_t>(i % 30011))
+                                  : static_cast<std::int32_t>((i * 7919) % 65536);
+    bundle.labels = labels;
+    for (const int level : {0, 1}) {
+      const std::filesystem::path path =
+          temp / ("labels_" + std::to_string(negative) + "_" + std::to_string(level) + ".h5");
+      WriteBundle(bundle, path, {SampleStorage::kFloat32, level});
+      const Bundle read = ReadBundle(path);
+      ASSERT_TRUE(read.labels.has_value());
+      EXPECT_EQ(std::memcmp(read.labels->data(), labels.data(), labels.size() * sizeof(std::int32_t)), 0)
+          << "negative " << negative << ", level " << level;
+      const Labels alone = ReadLabels(path);
+      EXPECT_EQ(std::memcmp(alone.data(), labels.data(), labels.size() * sizeof(std::int32_t)), 0);
+    }
+  }
+}
+
 TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
   TempDir temp;
   Bundle bundle;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <limits>
 #include <numbers>
 
 #include "lfsp/core/error.h"
@@ -136,6 +138,31 @@ TEST(SelfSimilarity, ByHandOnAConstantDisparityRow) {
   SetView(consistent, 1, Columns(8, 4, 4));
   SetView(consistent, 2, Columns(8, 4, 3));
   EXPECT_NEAR(SelfSimilarity(consistent, views), 0.5, 1e-12);
+}
+
+// The evaluation reads both framings from one pass (CarriedCentroidSumsBoth): the same doubles, bit for bit, as
+// one pass per framing, so the scores it reports did not move.
+TEST(CarriedCentroidSums, BothFramingsFromOnePassAreTheSameDoubles) {
+  DisparityMap disparity(8, 4, 1.25f);
+  disparity.at(1, 3) = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<DisparityMap> views = PropagateDisparity(disparity, Row3());
+  Labels labels(Row3());
+  SetView(labels, 0, Columns(8, 4, 5));
+  SetView(labels, 1, Columns(8, 4, 4, -1, 2));
+  SetView(labels, 2, Columns(8, 4, 3));
+  const CarriedCentroids both = CarriedCentroidSumsBoth(labels, views);
+  std::size_t all_count = 0, in_frame_count = 0;
+  const std::vector<double> all = CarriedCentroidSums(labels, views, false, all_count);
+  const std::vector<double> in_frame = CarriedCentroidSums(labels, views, true, in_frame_count);
+  EXPECT_EQ(both.label_count, all_count);
+  EXPECT_EQ(both.label_count, in_frame_count);
+  ASSERT_EQ(both.all.size(), all.size());
+  ASSERT_EQ(both.in_frame.size(), in_frame.size());
+  EXPECT_EQ(std::memcmp(both.all.data(), all.data(), all.size() * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(both.in_frame.data(), in_frame.data(), in_frame.size() * sizeof(double)), 0);
+  EXPECT_NE(both.all, both.in_frame);  // the frame does leave rays out here
+  EXPECT_EQ(SelfSimilarityOfSums(both.all, both.label_count, labels.shape()), SelfSimilarity(labels, views));
+  EXPECT_EQ(SelfSimilarityOfSums(both.in_frame, both.label_count, labels.shape()), SelfSimilarity(labels, views, true));
 }
 
 TEST(LabelsPerPixel, ByHandOnAConstantDisparityRow) {

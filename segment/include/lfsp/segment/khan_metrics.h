@@ -37,6 +37,8 @@
 namespace lfsp::segment {
 
 double KhanSelfSimilarity(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
+// KhanSelfSimilarity from CarriedCentroidSums's sums (in_frame_only = false).
+double KhanSelfSimilarityOfSums(const std::vector<double>& sums, std::size_t label_count, const LightFieldShape& shape);
 double KhanLabelsPerPixel(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
 double KhanBoundaryRecall(const Labels& labels, const Labels& gt);
 double KhanAchievableAccuracy(const Labels& labels, const Labels& gt);
@@ -44,9 +46,11 @@ double KhanAverageSize(const Labels& labels);
 
 // Every Khan metric the inputs allow: {"size", "self_similarity", "labels_per_pixel"} with view disparities,
 // {"boundary_recall", "undersegmentation_error", "achievable_accuracy"} with ground-truth labels. Khan's
-// undersegmentation error is RegionUndersegmentationError: a caller that has it already passes it in.
+// undersegmentation error is RegionUndersegmentationError, and a caller that has it, or the self-similarity (from
+// CarriedCentroidSumsBoth), already passes it in.
 nlohmann::json ScoreKhan(const Labels& labels, const Labels* gt_labels,
                          const std::vector<DisparityMap>* gt_view_disparity,
-                         std::optional<double> region_undersegmentation_error = std::nullopt);
+                         std::optional<double> region_undersegmentation_error = std::nullopt,
+                         std::optional<double> self_similarity = std::nullopt);
 
 }  // namespace lfsp::segment

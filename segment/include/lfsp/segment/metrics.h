@@ -57,6 +57,15 @@ std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const L
 // (here and khan_metrics.h) read their centroids from it.
 std::vector<double> CarriedCentroidSums(const Labels& labels, const std::vector<DisparityMap>& view_disparity,
                                         bool in_frame_only, std::size_t& label_count);
+// Both variants of CarriedCentroidSums from one pass over the rays (the evaluation scores both).
+struct CarriedCentroids {
+  std::vector<double> all;       // in_frame_only = false
+  std::vector<double> in_frame;  // in_frame_only = true
+  std::size_t label_count = 0;
+};
+CarriedCentroids CarriedCentroidSumsBoth(const Labels& labels, const std::vector<DisparityMap>& view_disparity);
+// SelfSimilarity from sums CarriedCentroidSums made (either variant).
+double SelfSimilarityOfSums(const std::vector<double>& sums, std::size_t label_count, const LightFieldShape& shape);
 // LFSP self-similarity (Eqs. 8-10): every slice projected to the centre view with the ground-truth disparity of its
 // rays, the distance of its centroid from the centre slice's centroid, averaged over the views where the label
 // appears, then over labels present in the centre view and in at least one other view. Pixels.
