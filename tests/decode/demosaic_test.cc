@@ -86,8 +86,9 @@ TEST(Demosaic, TheNextMicroImageStaysOut) {
       for (int channel = 0; channel < 3; ++channel) ASSERT_LT(rgb.at<cv::Vec3f>(y, x)[channel], 1.0f);
 }
 
-// A grey texture along x (a sinusoid of period 6.7 px, as a scene 1.5 px per view step from the focal plane draws in
-// an F01 micro-image) over the ramp's lens, beside a vertical boundary: the luminance of the three columns nearest
+// A grey texture along x (a sinusoid of period 6.7 px: what a texture of period 10 view pixels at disparity 1.5 draws
+// in a micro-image, one sensor pixel per view step) over the ramp's lens, beside a vertical boundary: the luminance
+// of the three columns nearest
 // the boundary must not lag behind the texture towards the lens (which made the outer views read |disparity| too
 // small). Their least-squares shift against the truth: -0.175 px when the one-sided estimates took K(q) along the
 // pair and were averaged with complete pairs; -0.152 with the complete pairs alone where there are any; -0.104 with
