@@ -88,12 +88,11 @@ TEST(Demosaic, TheNextMicroImageStaysOut) {
 
 // A grey texture along x (a sinusoid of period 6.7 px: what a texture of period 10 view pixels at disparity 1.5 draws
 // in a micro-image, one sensor pixel per view step) over the ramp's lens, beside a vertical boundary: the luminance
-// of the three columns nearest
-// the boundary must not lag behind the texture towards the lens (which made the outer views read |disparity| too
-// small). Their least-squares shift against the truth: -0.175 px when the one-sided estimates took K(q) along the
-// pair and were averaged with complete pairs; -0.152 with the complete pairs alone where there are any; -0.104 with
-// K(q) across the pair as well. What is left comes from the red of blue pixels and the blue of red ones, whose
-// colour has no pixel on q's column.
+// of the three columns nearest the boundary must not lag behind the texture towards the lens (which made the outer
+// views read |disparity| too small). Their least-squares shift against the truth: -0.175 px when the one-sided
+// estimates took K(q) along the pair and were averaged with complete pairs; -0.152 with the complete pairs alone
+// where there are any; -0.104 with K(q) across the pair as well. What is left comes from the red of blue pixels and
+// the blue of red ones, whose colour has no pixel on q's column.
 TEST(Demosaic, AFineTextureBesideTheNextMicroLensDoesNotLagInwards) {
   constexpr double kFrequency = 0.15;  // cycles per pixel
   auto truth = [&](double x) { return 0.5 + 0.2 * std::sin(2.0 * M_PI * kFrequency * x + 0.4); };
