@@ -67,11 +67,11 @@ nlohmann::json ScoreLabels(const Labels& labels, const Labels* gt_labels, const 
                            const std::vector<DisparityMap>* gt_view_disparity, int boundary_tolerance) {
   const bool consistency = gt_disparity != nullptr && gt_view_disparity != nullptr;
   nlohmann::json m;
-  // The label counts once: the effective label ratio is their quotient (EffectiveLabelRatio's).
+  // The label counts once: the effective label ratio is their quotient.
   const int label_count = LabelCount(labels), centre_label_count = CentreLabelCount(labels);
   m["labels"] = label_count;
   m["centre_labels"] = centre_label_count;
-  m["elr"] = label_count > 0 ? static_cast<double>(centre_label_count) / label_count : 0.0;
+  m["elr"] = EffectiveLabelRatio(centre_label_count, label_count);
   m["compactness"] = Compactness(labels);
   // The overlap scores from one count of the overlaps, Khan's region error among them.
   std::optional<OverlapScores> overlaps;

@@ -334,9 +334,12 @@ int CentreLabelCount(const Labels& labels) {
 
 int LabelCount(const Labels& labels) { return DistinctLabels(labels.data(), labels.size()); }
 
+double EffectiveLabelRatio(int centre_label_count, int label_count) {
+  return label_count > 0 ? static_cast<double>(centre_label_count) / label_count : 0.0;
+}
+
 double EffectiveLabelRatio(const Labels& labels) {
-  const int total = LabelCount(labels);
-  return total > 0 ? static_cast<double>(CentreLabelCount(labels)) / total : 0.0;
+  return EffectiveLabelRatio(CentreLabelCount(labels), LabelCount(labels));
 }
 
 std::vector<DisparityMap> PropagateDisparity(const DisparityMap& centre, const LightFieldShape& shape) {

@@ -42,6 +42,8 @@ double Compactness(const Labels& labels);
 
 // Effective label ratio (Eq. 11): labels present in the centre view / labels present anywhere.
 double EffectiveLabelRatio(const Labels& labels);
+// The same from counts a caller has already made: centre labels over all labels, 0 without labels.
+double EffectiveLabelRatio(int centre_label_count, int label_count);
 
 // Distinct labels in the centre view and in the whole light field.
 int CentreLabelCount(const Labels& labels);
