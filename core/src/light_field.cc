@@ -26,29 +26,23 @@ template <typename T>
 cv::Mat WrapView(const LightFieldShape& shape, int depth, int channels, const T* data) {
   return cv::Mat(shape.height, shape.width, CV_MAKETYPE(depth, channels), const_cast<T*>(data));
 }
-}  // namespace
-
-cv::Mat LightField::View(ViewIndex view) { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
-cv::Mat LightField::View(ViewIndex view) const { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
-
-void LightField::EnableWeights(float fill) {
-  LightFieldShape weight_shape = shape_;
-  weight_shape.channels = 1;
-  weights_ = Array4D<float>(weight_shape, fill);
-}
-
-cv::Mat LightField::WeightView(ViewIndex view) {
-  return WrapView(weights_.shape(), CV_32F, 1, weights_.ViewData(view));
-}
-
-namespace {
 
 LightFieldShape OneChannel(LightFieldShape shape) {
   shape.channels = 1;
   return shape;
 }
-
 }  // namespace
+
+cv::Mat LightField::View(ViewIndex view) { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
+cv::Mat LightField::View(ViewIndex view) const { return WrapView(shape_, CV_32F, shape_.channels, ViewData(view)); }
+
+void LightField::EnableWeights(float fill) { weights_ = Array4D<float>(OneChannel(shape_), fill); }
+
+void LightField::EnableWeights(Unfilled) { weights_ = Array4D<float>(OneChannel(shape_), Unfilled{}); }
+
+cv::Mat LightField::WeightView(ViewIndex view) {
+  return WrapView(weights_.shape(), CV_32F, 1, weights_.ViewData(view));
+}
 
 Labels::Labels(LightFieldShape shape, std::int32_t fill) : Array4D<std::int32_t>(OneChannel(shape), fill) {}
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <opencv2/core.hpp>
 
 #include "bayer_preprocess.h"
@@ -248,19 +247,14 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   ReturnFreedMemory();
   lap("demosaic");
 
-  // The output (about 1 GB for an Illum) is allocated and zero-filled by one thread while the others measure the
-  // exposure: the fill is serial, that step parallel. Not earlier: beside the demosaic's sensor-size buffers it
-  // made the decode's peak (issue 46).
+  // The output (about 1 GB for an Illum) is left unfilled: the slicing sets every sample and weight, so its pages
+  // are first touched there, by both cores, instead of by a serial zero fill. Not before the demosaic: beside its
+  // sensor-size buffers the light field made the decode's peak (issue 46).
   LightFieldShape shape;
   shape.nu = shape.nv = geometry.views;
   shape.width = geometry.width;
   shape.height = geometry.height;
   shape.channels = 3;
-  std::future<LightField> allocation = std::async(std::launch::async, [shape] {
-    LightField allocated(shape);
-    allocated.EnableWeights(0.0f);
-    return allocated;
-  });
 
   // 3. The colour transform and the scale that keeps the brightest well-lit ray at or below 1 (the decode clips no
   //    highlight: the whole light field is darkened instead). What the sensor clipped has lost its colour and is
@@ -278,8 +272,8 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   lap("exposure");
 
   // 4. One interpolation pass into the 4D grid, then the row-alternation softening and encoding.
-  LightField light_field = allocation.get();
-  lap("allocate_wait");
+  LightField light_field(shape, LightField::Unfilled{});
+  light_field.EnableWeights(LightField::Unfilled{});
   SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
   lap("slice");
   // The JPEG's block gain first: the lattice gain is measured against a blur across 2 rows, which the block

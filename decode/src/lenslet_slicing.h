@@ -15,10 +15,10 @@ struct RayColour {
   float scale = 1.0f;
 };
 
-// Fills `light_field` (geometry.views^2 views of geometry.width x geometry.height, RGB, with weights) in one
-// interpolation pass: for every lens row y and view (u, v), each micro-lens of the row is looked up once at the
-// view's offset ((u - uc), (v - vc)) * view_step from its centre (bilinear in the sensor image), then the output
-// row is interpolated along the lens row (cubic, Catmull-Rom) at lattice positions x * sqrt(3)/2: hexagonal to
+// Sets every sample and weight of `light_field` (geometry.views^2 views of geometry.width x geometry.height, RGB, with
+// weights) in one interpolation pass: for every lens row y and view (u, v), each micro-lens of the row is looked up
+// once at the view's offset ((u - uc), (v - vc)) * view_step from its centre (bilinear in the sensor image), then the
+// output row is interpolated along the lens row (cubic, Catmull-Rom) at lattice positions x * sqrt(3)/2: hexagonal to
 // rectangular. Weights come the same way from `grey_white`, zero beyond the micro-lens radius. Each lookup keeps
 // to its own micro-lens (`lens_labels`, LensLabels). `rgb` is CV_32FC3
 // (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows, which keeps each

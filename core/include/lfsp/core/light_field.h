@@ -85,6 +85,8 @@ class LightField : public Array4D<float> {
  public:
   LightField() = default;
   explicit LightField(const LightFieldShape& shape) : Array4D<float>(shape) {}
+  // Samples left unset, for a writer that sets every one (no serial pass over the pages before it).
+  LightField(const LightFieldShape& shape, Unfilled) : Array4D<float>(shape, Unfilled{}) {}
 
   // Zero-copy views of the data: the returned cv::Mat shares memory with this light field.
   cv::Mat View(ViewIndex view);
@@ -95,6 +97,7 @@ class LightField : public Array4D<float> {
 
   bool HasWeights() const { return !weights_.empty(); }
   void EnableWeights(float fill = 1.0f);  // allocates one weight per ray
+  void EnableWeights(Unfilled);           // the same, left unset for a writer that sets every one
   void DropWeights() { weights_ = {}; }
   Array4D<float>& weights() { return weights_; }
   const Array4D<float>& weights() const { return weights_; }
