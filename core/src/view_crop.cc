@@ -7,9 +7,8 @@
 #include "lfsp/core/error.h"
 
 namespace lfsp {
-namespace {
 
-LightFieldShape CroppedShape(const LightFieldShape& shape, int n) {
+LightFieldShape CentralShape(const LightFieldShape& shape, int n) {
   const int available = std::min(shape.nu, shape.nv);
   if (n < 1 || n > available || (available - n) % 2 != 0) {
     throw Error("central views: cannot take " + std::to_string(n) + "x" + std::to_string(n) + " views of " +
@@ -19,6 +18,8 @@ LightFieldShape CroppedShape(const LightFieldShape& shape, int n) {
   cropped.nu = cropped.nv = n;
   return cropped;
 }
+
+namespace {
 
 template <typename T>
 void CopyCentralViews(const Array4D<T>& from, Array4D<T>& to) {
@@ -35,7 +36,7 @@ void CopyCentralViews(const Array4D<T>& from, Array4D<T>& to) {
 }  // namespace
 
 LightField CentralViews(const LightField& light_field, int n) {
-  LightField out(CroppedShape(light_field.shape(), n));
+  LightField out(CentralShape(light_field.shape(), n));
   CopyCentralViews(light_field, out);
   out.transfer = light_field.transfer;
   out.metadata = light_field.metadata;
@@ -47,7 +48,7 @@ LightField CentralViews(const LightField& light_field, int n) {
 }
 
 Labels CentralViews(const Labels& labels, int n) {
-  Labels out(CroppedShape(labels.shape(), n));
+  Labels out(CentralShape(labels.shape(), n));
   CopyCentralViews(labels, out);
   return out;
 }
@@ -63,43 +64,51 @@ double MeanViewWeight(const LightField& light_field, ViewIndex view) {
 namespace {
 
 // The lowest mean weight over the views at Chebyshev distance `from` .. `to` from the centre.
-double LeastWeight(const LightField& light_field, int from, int to) {
-  const ViewIndex centre = light_field.shape().Centre();
+double LeastWeight(const LightFieldShape& shape, const std::function<double(ViewIndex)>& mean_weight, int from,
+                   int to) {
+  const ViewIndex centre = shape.Centre();
   double least = 1.0;
   for (int v = centre.v - to; v <= centre.v + to; ++v)
     for (int u = centre.u - to; u <= centre.u + to; ++u)
       if (std::max(std::abs(u - centre.u), std::abs(v - centre.v)) >= from)
-        least = std::min(least, MeanViewWeight(light_field, ViewIndex{u, v}));
+        least = std::min(least, mean_weight(ViewIndex{u, v}));
   return least;
 }
 
 }  // namespace
 
+int WellLitCentralSize(const LightFieldShape& shape, const std::function<double(ViewIndex)>& mean_weight,
+                       double threshold) {
+  const int available = std::min(shape.nu, shape.nv);
+  int n = available % 2 == 1 ? 1 : 2;
+  while (n + 2 <= available) {
+    const int ring = (n + 1) / 2;
+    if (LeastWeight(shape, mean_weight, ring, ring) < threshold) break;
+    n += 2;
+  }
+  return n;
+}
+
 ViewChoice ChooseViews(const LightField& light_field, int requested) {
   const LightFieldShape& shape = light_field.shape();
+  const auto mean_weight = [&light_field](ViewIndex view) { return MeanViewWeight(light_field, view); };
   ViewChoice choice;
   choice.available = std::min(shape.nu, shape.nv);
   if (requested > 0) {
-    CroppedShape(shape, requested);  // throws with the reason if it cannot be taken
+    CentralShape(shape, requested);  // throws with the reason if it cannot be taken
     choice.n = requested;
     choice.reason = OptionName("views") + " " + std::to_string(requested);
   } else if (!light_field.HasWeights()) {
     choice.n = choice.available;
     choice.reason = "all views (the light field has no weights)";
   } else {
-    // Grow ring by ring from the centre while every view of the next ring is well lit.
-    choice.n = choice.available % 2 == 1 ? 1 : 2;
-    while (choice.n + 2 <= choice.available) {
-      const int ring = (choice.n + 1) / 2;
-      if (LeastWeight(light_field, ring, ring) < kWellLitWeight) break;
-      choice.n += 2;
-    }
+    choice.n = WellLitCentralSize(shape, mean_weight);
     choice.reason = "central " + std::to_string(choice.n) + "x" + std::to_string(choice.n) + " of " +
                     std::to_string(choice.available) + "x" + std::to_string(choice.available) +
                     ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) + " (" +
                     OptionName("views") + " to override)";
   }
-  if (light_field.HasWeights()) choice.least_weight = LeastWeight(light_field, 0, (choice.n - 1) / 2);
+  if (light_field.HasWeights()) choice.least_weight = LeastWeight(shape, mean_weight, 0, (choice.n - 1) / 2);
   return choice;
 }
 

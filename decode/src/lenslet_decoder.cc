@@ -12,6 +12,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stopwatch.h"
+#include "lfsp/core/view_crop.h"
 #include "lfsp/decode/lattice_gain.h"
 #include "lfsp/decode/lattice_pattern.h"
 #include "lfsp/decode/view_quality.h"
@@ -201,6 +202,22 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   return light_field;
 }
 
+namespace {
+
+// The side of the central square of views to slice (DecodeOptions::central_views).
+int ViewsToDecode(int requested, const cv::Mat& grey_white, const LensletGrid& grid, const DecodedGeometry& geometry) {
+  LightFieldShape all;
+  all.nu = all.nv = geometry.views;
+  if (requested < 0) return geometry.views;
+  if (requested > 0) return CentralShape(all, requested).nu;  // lfsp::Error when it cannot be taken
+  const std::vector<double> means = ApproximateViewMeanWeights(grey_white, grid, geometry);
+  return WellLitCentralSize(
+      all, [&](ViewIndex view) { return means[static_cast<std::size_t>(view.v * geometry.views + view.u)]; },
+      kWellLitWeight - kDecodeChoiceMargin);
+}
+
+}  // namespace
+
 LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
                          const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report) {
   DecodeReport local_report;
@@ -228,6 +245,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
     throw Error(white.source + ": Bayer pattern " + std::string(ToString(white.format.mosaic)) +
                 " differs from the capture's " + std::string(ToString(capture_format.mosaic)));
   const DecodedGeometry geometry = DecodedGeometryFor(grid);
+  const int views = ViewsToDecode(options.central_views, white.grey, grid, geometry);
 
   // 1. Levels, hot pixels and devignetting, in one pass over the Bayer image.
   const PhaseLevels capture_levels = LevelsOf(capture_format, capture_metadata.source);
@@ -251,7 +269,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   // are first touched there, by both cores, instead of by a serial zero fill. Not before the demosaic: beside its
   // sensor-size buffers the light field made the decode's peak (issue 46).
   LightFieldShape shape;
-  shape.nu = shape.nv = geometry.views;
+  shape.nu = shape.nv = views;
   shape.width = geometry.width;
   shape.height = geometry.height;
   shape.channels = 3;
@@ -303,6 +321,7 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
                                     {"hot_pixels_corrected", out_report.hot_pixels_corrected},
                                     {"highlights_neutralised", out_report.highlights_neutralised},
                                     {"view_step_pixels", geometry.view_step},
+                                    {"views_of_grid", geometry.views},
                                     {"grid_spacing_x", grid.spacing_x},
                                     {"grid_spacing_y", grid.spacing_y},
                                     {"grid_rotation", grid.rotation},

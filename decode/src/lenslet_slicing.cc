@@ -222,8 +222,9 @@ class SrgbTable {
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
                        const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
                        LightField& light_field) {
-  const int views = geometry.views;
-  const int centre = (views - 1) / 2;
+  // The light field holds the central views x views of the geometry's grid (all of them unless fewer were asked).
+  const int views = light_field.shape().nu;
+  const int first = (geometry.views - views) / 2, grid_centre = (geometry.views - 1) / 2;
   const int width = geometry.width;
   // Lenses -2 .. columns + 1 of a row, so every output column has its 4 taps.
   const int lens_begin = -2;
@@ -242,7 +243,8 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
   for (int v = 0; v < views; ++v)
     for (int u = 0; u < views; ++u) {
       const auto k = static_cast<std::size_t>(v * views + u);
-      const double along = (u - centre) * geometry.view_step, across = (v - centre) * geometry.view_step;
+      const double along = (first + u - grid_centre) * geometry.view_step;
+      const double across = (first + v - grid_centre) * geometry.view_step;
       offset_x[k] = c * along - s * across;
       offset_y[k] = s * along + c * across;
       inside_lens[k] = std::hypot(along, across) < lens_radius;
@@ -302,6 +304,37 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
       }
     }
   }
+}
+
+std::vector<double> ApproximateViewMeanWeights(const cv::Mat& grey_white, const LensletGrid& grid,
+                                               const DecodedGeometry& geometry) {
+  constexpr int kRowStep = 4;
+  const int views = geometry.views, centre = (views - 1) / 2;
+  std::vector<double> means(static_cast<std::size_t>(views) * static_cast<std::size_t>(views), 0.0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < views * views; ++k) {
+    const double along = (k % views - centre) * geometry.view_step, across = (k / views - centre) * geometry.view_step;
+    const bool inside_lens = std::hypot(along, across) < 0.5 * grid.spacing_x;
+    if (!inside_lens) continue;  // the slicing gives these rays no weight
+    double sum = 0.0;
+    long long count = 0;
+    for (int y = 0; y < geometry.height; y += kRowStep)
+      for (int i = 0; i < grid.columns; ++i) {
+        double x = 0.0, sy = 0.0;
+        grid.SensorPosition(i + 0.5 * grid.Shift(y), y, along, across, x, sy);
+        x = std::clamp(x, 0.0, grey_white.cols - 1.0001);
+        sy = std::clamp(sy, 0.0, grey_white.rows - 1.0001);
+        const int x0 = static_cast<int>(x), y0 = static_cast<int>(sy);
+        const double fx = x - x0, fy = sy - y0;
+        const float* g = grey_white.ptr<float>(y0) + x0;
+        const float* h = grey_white.ptr<float>(y0 + 1) + x0;
+        const double white = (1 - fx) * (1 - fy) * g[0] + fx * (1 - fy) * g[1] + (1 - fx) * fy * h[0] + fx * fy * h[1];
+        sum += std::clamp(white, 0.0, 1.0);
+        ++count;
+      }
+    means[static_cast<std::size_t>(k)] = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  }
+  return means;
 }
 
 float BrightestWellLit(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<float, 9>& m) {

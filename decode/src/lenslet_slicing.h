@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include <array>
 #include <opencv2/core/mat.hpp>
 
@@ -23,9 +25,16 @@ struct RayColour {
 // to its own micro-lens (`lens_labels`, LensLabels). `rgb` is CV_32FC3
 // (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows, which keeps each
 // thread's reads within a band of sensor rows.
+// When `light_field` holds fewer views than the geometry (N x N of geometry.views^2), they are the central N x N.
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
                        const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
                        LightField& light_field);
+
+// Every view's mean weight as the slicing would give it, estimated from the white image alone (bilinear at each
+// lens of every fourth lens row, without the cubic along the rows or the taps under other lenses): a few
+// milliseconds, to choose which views to slice. Camera order (v * views + u).
+std::vector<double> ApproximateViewMeanWeights(const cv::Mat& grey_white, const LensletGrid& grid,
+                                               const DecodedGeometry& geometry);
 
 // The level of the brightest rays: the 99.99th percentile of the largest channel of M * rgb over the well-lit
 // sensor pixels (grey white >= 0.5), so a scale that keeps highlights unclipped can be chosen before slicing

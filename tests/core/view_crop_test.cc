@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/registration.h"
@@ -80,6 +81,31 @@ TEST(ChooseViews, KeepsTheLargestSquareWhoseViewsAreAllWellLit) {
   EXPECT_FLOAT_EQ(requested.least_weight, 0.9);
   EXPECT_THROW(ChooseViews(light_field, 4), Error);
   EXPECT_EQ(ChooseViews(LightField(LightFieldShape{5, 5, 4, 3, 3})).n, 5) << "without weights every view is kept";
+}
+
+TEST(WellLitCentralSize, AppliesChooseViewsRuleToAnySourceOfMeans) {
+  const LightFieldShape shape{9, 9, 4, 4, 3};
+  std::vector<int> asked_rings;
+  const auto ring_mean = [&](ViewIndex view) {
+    const int ring = std::max(std::abs(view.u - 4), std::abs(view.v - 4));
+    asked_rings.push_back(ring);
+    const double mean[5] = {1.0, 0.9, 0.7, 0.45, 0.2};
+    return mean[ring];
+  };
+  EXPECT_EQ(WellLitCentralSize(shape, ring_mean), 7);
+  EXPECT_EQ(*std::max_element(asked_rings.begin(), asked_rings.end()), 4) << "no ring beyond the first dim one";
+  EXPECT_EQ(WellLitCentralSize(shape, ring_mean, 0.5), 5) << "a higher threshold stops at ring 2";
+  EXPECT_EQ(WellLitCentralSize(shape, ring_mean, 0.1), 9);
+  EXPECT_EQ(WellLitCentralSize(LightFieldShape{8, 8, 4, 4, 3}, [](ViewIndex) { return 0.0; }), 2)
+      << "an even grid keeps its central 2x2 at least";
+}
+
+TEST(CentralShape, IsTheShapeCentralViewsGives) {
+  const LightFieldShape shape{15, 15, 4, 3, 3};
+  EXPECT_EQ(CentralShape(shape, 9).nu, 9);
+  EXPECT_EQ(CentralShape(shape, 9).width, 4);
+  EXPECT_THROW(CentralShape(shape, 8), Error);
+  EXPECT_THROW(CentralShape(shape, 17), Error);
 }
 
 TEST(KeepCentralViews, CropsLightFieldAndLabelsInPlace) {

@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <opencv2/core.hpp>
 #include <tuple>
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/view_crop.h"
 #include "lfsp/decode/lattice_pattern.h"
 #include "lfsp/decode/lenslet_decoder.h"
 #include "lfsp/decode/lenslet_grid.h"
@@ -465,6 +467,34 @@ TEST_F(CropIllumDecode, WeightsFollowTheWhiteImage) {
   EXPECT_GT(centre, 0.8);
   EXPECT_LT(corner, 0.1);
   EXPECT_NEAR(centre / mean_weight(truth, shape.Centre()), 1.0, 0.1);
+}
+
+TEST_F(CropIllumDecode, CentralViewsAreTheFullDecodesCentreBitForBit) {
+  const LightField full = Decode(*shot_, *grid_, {});
+  DecodeOptions nine;
+  nine.central_views = 9;
+  const LightField central = Decode(*shot_, *grid_, nine);
+  ASSERT_EQ(central.shape().nu, 9);
+  ASSERT_EQ(central.shape().nv, 9);
+  const LightField expected = CentralViews(full, 9);
+  EXPECT_EQ(std::memcmp(central.data(), expected.data(), expected.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(central.weights().data(), expected.weights().data(), expected.weights().size() * sizeof(float)),
+            0);
+  EXPECT_EQ(central.metadata["decode"]["views_of_grid"], full.shape().nu);
+
+  // By default the views a stage keeps, with a margin: the exact choice on the full decode lies inside.
+  DecodeOptions kept;
+  kept.central_views = 0;
+  const LightField chosen = Decode(*shot_, *grid_, kept);
+  const int exact = ChooseViews(full).n;
+  EXPECT_GE(chosen.shape().nu, exact);
+  EXPECT_LE(chosen.shape().nu, exact + 2);
+  EXPECT_LT(chosen.shape().nu, full.shape().nu);  // the Illum's dim outer rings are not sliced
+  EXPECT_EQ(ChooseViews(chosen).n, exact);
+
+  DecodeOptions too_many;
+  too_many.central_views = full.shape().nu + 2;
+  EXPECT_THROW(Decode(*shot_, *grid_, too_many), Error);
 }
 
 TEST(Decode, HotPixelsAreCorrected) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -12,6 +13,8 @@ namespace lfsp {
 // Throws lfsp::Error unless 1 <= n <= the smaller view count and n has the same parity as it (so a centre exists
 // in both).
 LightField CentralViews(const LightField& light_field, int n);
+// The shape of those views (the same lfsp::Error when they cannot be taken).
+LightFieldShape CentralShape(const LightFieldShape& shape, int n);
 Labels CentralViews(const Labels& labels, int n);
 
 // Views are well lit when their mean weight (a lenslet decode's vignetting) is at least this: beyond it, the rays
@@ -22,6 +25,12 @@ constexpr double kWellLitWeight = 0.4;
 
 // The mean weight of one view (the light field must have weights).
 double MeanViewWeight(const LightField& light_field, ViewIndex view);
+
+// The rule ChooseViews applies, on any source of the views' mean weights: the side of the largest central square
+// of views (of the parity of the smaller view count) whose every view has a mean weight of at least `threshold`.
+// Ring by ring from the centre, so only the rings it reaches are asked for.
+int WellLitCentralSize(const LightFieldShape& shape, const std::function<double(ViewIndex)>& mean_weight,
+                       double threshold = kWellLitWeight);
 
 // The views a stage should process: the central n x n, n the largest size of the light field's parity whose every
 // view is well lit (all views when the light field has no weights), or `requested` when it is > 0 (lfsp::Error if

@@ -50,7 +50,19 @@ struct DecodeOptions {
   // is measured and divided out (FlattenJpegBlockGain in jpeg_block_gain.h).
   int jpeg_block = 0;
   bool flatten_jpeg_blocks = true;
+  // Which views to decode. -1: every view of the grid (LFToolbox's 4D grid). N > 0: the central N x N. 0: the
+  // central square a stage keeps by default (ChooseViews: every view well lit), judged before slicing from the white
+  // image with a margin (kDecodeChoiceMargin), so that the exact choice on the decoded weights lies inside it. The
+  // pipeline decodes only what it keeps: slicing, gains and storage then cost what the kept views cost.
+  int central_views = -1;
 };
+
+// How far below kWellLitWeight (view_crop.h) a view's white-image estimate of its mean weight may read and still be
+// decoded for central_views = 0. Against the decoded means, the estimate (ApproximateViewMeanWeights) reads within
+// 0.006 (simulated Illum) and 0.012 (simulated and real F01) for views above 0.25; only the dim rim's views, which
+// no choice keeps, read up to 0.055 off. The Illum's 11x11 ring reads 0.370 (decoded 0.370), so its 9x9 is sliced;
+// the F01's 9x9 ring reads 0.402 (decoded 0.391), so its whole 9x9 grid is, and the stage keeps 7x7 as before.
+inline constexpr double kDecodeChoiceMargin = 0.02;
 
 // The decoded 4D grid of a lattice, as LFToolbox sizes it: n = even(ceil(spacing)), views = n - 1 (Illum 15, F01 9),
 // one view step = spacing / n sensor pixels in the lattice frame; decoded pixel (x, y) sits at x * sqrt(3)/2 lens
