@@ -33,6 +33,12 @@ void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
                     "Mosaics stored as JPEG: keep the gain each view takes from where its samples fall in the JPEG's "
                     "8x8 blocks (horizontal bands every 13-14 rows on an F01); default: measured and divided out, its "
                     "size in the summary's decode.jpeg_block_gain");
+  command
+      ->add_option("--views", arguments.views,
+                   "Decode only the central N x N views; 0 = those the other stages keep by default (every view "
+                   "well lit, judged from the white image before slicing, with a margin), as `lfsp pipeline` does; "
+                   "-1 = every view of the lattice's grid (default)")
+      ->check(CLI::Range(-1, 1000));
 }
 
 void AddGridFileOption(CLI::App* command, std::string& grid_file) {
@@ -59,6 +65,7 @@ decode::CaptureDecodeOptions ToCaptureDecodeOptions(const DecodeArguments& argum
   options.decode.dehex = arguments.dehex;
   options.decode.flatten_lattice = !arguments.no_lattice_flattening;
   options.decode.flatten_jpeg_blocks = !arguments.no_jpeg_block_flattening;
+  options.decode.central_views = arguments.views;
   return options;
 }
 
@@ -71,7 +78,8 @@ nlohmann::json DecodeParameters(const DecodeArguments& arguments) {
           {"hot_pixels", !arguments.no_hot_pixels},
           {"dehex", arguments.dehex},
           {"lattice_flattening", !arguments.no_lattice_flattening},
-          {"jpeg_block_flattening", !arguments.no_jpeg_block_flattening}};
+          {"jpeg_block_flattening", !arguments.no_jpeg_block_flattening},
+          {"views", arguments.views}};
 }
 
 }  // namespace lfsp::cli

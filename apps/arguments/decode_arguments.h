@@ -22,6 +22,7 @@ struct DecodeArguments {
   double dehex = 0.1;
   bool no_lattice_flattening = false;
   bool no_jpeg_block_flattening = false;
+  int views = -1;  // DecodeOptions::central_views
   PlainRawArguments plain;
 };
 

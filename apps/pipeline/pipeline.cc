@@ -12,6 +12,7 @@
 #include "lfsp/core/memory_usage.h"
 #include "lfsp/core/stats.h"
 #include "lfsp/core/stopwatch.h"
+#include "lfsp/core/view_crop.h"
 #include "lfsp/decode/container_info.h"
 #include "lfsp/depth/depth_io.h"
 #include "lfsp/edit/refocus.h"
@@ -96,6 +97,10 @@ std::optional<TruthComparison> AttachSimulatorGroundTruth(const fs::path& captur
   Bundle truth = ReadBundle(truth_path);
   const LightFieldShape& shape = decoded.light_field.shape();
   const LightFieldShape& truth_shape = truth.light_field.shape();
+  // The decode holds the central views of the simulator's grid when the pipeline asked for fewer.
+  if (truth_shape.nu == truth_shape.nv && truth_shape.nu > shape.nu && shape.nu == shape.nv &&
+      (truth_shape.nu - shape.nu) % 2 == 0)
+    KeepCentralViews(truth.light_field, truth.labels, shape.nu);
   if (truth_shape.nu != shape.nu || truth_shape.nv != shape.nv || truth_shape.width != shape.width ||
       truth_shape.height != shape.height) {
     spdlog::warn("{}: ground truth is {} but the decoded light field is {}; metrics skipped", truth_path.string(),
@@ -162,6 +167,9 @@ Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohm
     decode_options.no_white_image = options.no_white_image;
     decode_options.grid = options.grid;
     decode_options.plain = options.plain;
+    // Only the views the stages will keep are decoded (by default a margin wider than the well-lit ones, which
+    // SelectViews below then chooses exactly): the rest would be sliced, stored and compared for nothing.
+    decode_options.decode.central_views = options.views;
     stages::DecodeStageResult decoded = stages::RunDecodeStage(input, decode_options);
     bundle = std::move(decoded.bundle);
     summary["decode"] = std::move(decoded.summary);
