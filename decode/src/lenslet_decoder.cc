@@ -208,6 +208,8 @@ namespace {
 int ViewsToDecode(int requested, const cv::Mat& grey_white, const LensletGrid& grid, const DecodedGeometry& geometry) {
   LightFieldShape all;
   all.nu = all.nv = geometry.views;
+  all.width = geometry.width;
+  all.height = geometry.height;
   if (requested < 0) return geometry.views;
   if (requested > 0) return CentralShape(all, requested).nu;  // lfsp::Error when it cannot be taken
   const std::vector<double> means = ApproximateViewMeanWeights(grey_white, grid, geometry);
