@@ -405,6 +405,9 @@ void RequireHdf5File(const fs::path& path) {
 
 }  // namespace
 
+namespace {
+
+// The views `block` names must lie inside `shape`'s (lfsp::Error naming `where` otherwise).
 void RequireBlockInside(const ViewBlock& block, const LightFieldShape& shape, const std::string& where) {
   if (block.nu < 1 || block.nv < 1 || block.first.u < 0 || block.first.v < 0 || block.first.u > shape.nu - block.nu ||
       block.first.v > shape.nv - block.nv)
@@ -412,8 +415,6 @@ void RequireBlockInside(const ViewBlock& block, const LightFieldShape& shape, co
                 std::to_string(block.first.u) + ", " + std::to_string(block.first.v) + ") are not all among the " +
                 std::to_string(shape.nu) + " x " + std::to_string(shape.nv) + " views of " + ToString(shape));
 }
-
-namespace {
 
 // The block's views of the samples, with the transfer and metadata, and their weights if `parts` asks for them.
 LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& samples, const LightFieldShape& stored,

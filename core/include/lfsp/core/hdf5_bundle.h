@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <optional>
-#include <string>
 
 #include "lfsp/core/light_field.h"
 
@@ -41,9 +40,6 @@ void RoundToStoredPrecision(LightField& light_field, SampleStorage storage);
 // GT_DEPTH (depth per view, converted to centre-view disparity with the file's dH/focalLength/shift attributes),
 // plus a sibling labels.h5 with GT_LABELS when present.
 Bundle ReadBundle(const std::filesystem::path& path);
-
-// The views `block` names must lie inside `shape`'s (lfsp::Error naming `where` otherwise).
-void RequireBlockInside(const ViewBlock& block, const LightFieldShape& shape, const std::string& where);
 
 // What ReadBundle reads of a bundle. A part of a large bundle costs only its own memory: the pipeline compares a
 // decode with the simulator's 1 GB ideal light field one row of views at a time (issue 46).
