@@ -7,6 +7,8 @@
 #include <opencv2/core.hpp>
 
 #include "lfsp/core/channel_gains.h"
+#include "lfsp/core/hdf5_bundle.h"
+#include "lfsp/core/view_crop.h"
 #include "lfsp/core/visualize.h"
 #include "lfsp/depth/metrics.h"
 
@@ -59,16 +61,31 @@ DepthEdgeMask AwayFromDepthEdges(const std::optional<DisparityMap>& disparity, i
 
 }  // namespace
 
-TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth,
+TruthComparison CompareWithTruth(const LightField& decoded, const std::filesystem::path& truth,
                                  const std::optional<DisparityMap>& truth_disparity) {
   TruthComparison comparison;
-  comparison.nu = truth.shape().nu;
-  comparison.nv = truth.shape().nv;
+  const LightFieldShape& shape = decoded.shape();
+  comparison.nu = shape.nu;
+  comparison.nv = shape.nv;
   const DepthEdgeMask away = AwayFromDepthEdges(truth_disparity, std::max(comparison.nu, comparison.nv) / 2);
   comparison.depth_edge_margin_px = away.margin;
-  comparison.registration = RegisterViews(decoded, truth, TruthComparison::kRegisteredWeight, 20, away.mask);
-  const ViewIndex centre = truth.shape().Centre();
-  comparison.centre_error = CentreError(decoded.View(centre), decoded.transfer, truth.View(centre), truth.transfer);
+  ViewRegistration& registration = comparison.registration;
+  registration.views.resize(shape.Views());
+  const ViewIndex centre = shape.Centre();
+  // The decode may hold only the central views of the truth's grid (the pipeline decodes the views it keeps).
+  const ViewIndex first = CentralViewBlock(ReadBundleShape(truth), shape.nu).first;
+  for (int v = 0; v < shape.nv; ++v) {
+    BundleParts row_of_views;
+    row_of_views.views = ViewBlock{{first.u, first.v + v}, shape.nu, 1};
+    row_of_views.disparity = false;
+    row_of_views.labels = false;
+    const LightField row = ReadBundle(truth, row_of_views).light_field;
+    RegisterBlock(decoded, row, ViewIndex{0, v}, TruthComparison::kRegisteredWeight, 20, away.mask, registration);
+    if (v == centre.v)
+      comparison.centre_error =
+          CentreError(decoded.View(centre), decoded.transfer, row.View(ViewIndex{centre.u, 0}), row.transfer);
+  }
+  CountRegistered(registration);
   const double mean_square = cv::mean(comparison.centre_error.mul(comparison.centre_error))[0];
   comparison.centre_rms = std::sqrt(mean_square);
   comparison.centre_psnr_db = mean_square > 0.0 ? -10.0 * std::log10(mean_square) : 99.0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
 #include <optional>
@@ -24,7 +25,11 @@ struct TruthComparison {
   double centre_rms = 0.0;
   double centre_psnr_db = 0.0;
 };
-TruthComparison CompareWithTruth(const LightField& decoded, const LightField& truth,
+// The ideal light field is read from the bundle `truth` (of decoded's shape, or holding decoded's views as its central
+// block) a row of views at a time: only a row of
+// it is held beside the decoded light field (the whole of it, 1.2 GB in memory with its labels, made the pipeline's
+// peak; issue 46).
+TruthComparison CompareWithTruth(const LightField& decoded, const std::filesystem::path& truth,
                                  const std::optional<DisparityMap>& truth_disparity);
 
 nlohmann::ordered_json ToJson(const TruthComparison& comparison);

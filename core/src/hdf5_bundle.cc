@@ -42,16 +42,84 @@ std::string DimsText(const std::vector<hsize_t>& dims) {
   return text;
 }
 
-// Reads a numeric dataset of any integer or float type into floats: unsigned 8/16-bit samples are scaled to [0, 1]
-// (the HCI files store uint8 views), floats are taken as they are.
-void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, std::size_t count, const std::string& where) {
-  // Datasets of one view per chunk (what WriteBundle writes) are inflated in parallel, contiguous ones (the
-  // simulator's ground truth) read in parallel; others through HDF5.
-  const auto read = [&](void* values, const H5::PredType& type) {
-    if (!ReadViewChunks(dataset.getId(), type.getId(), values, count, where) &&
-        !ReadContiguous(dataset.getId(), type.getId(), values, count, where))
-      dataset.read(values, type);
-  };
+ViewBlock AllViews(const LightFieldShape& shape) { return {{0, 0}, shape.nu, shape.nv}; }
+
+LightFieldShape BlockShape(LightFieldShape shape, const ViewBlock& block) {
+  shape.nu = block.nu;
+  shape.nv = block.nv;
+  return shape;
+}
+
+// The views of a dataset [nv][nu][...] to read: the block, of a light field of `stored_nu` views per row. Each
+// view's elements (the product of the dimensions past the first two) are `view_elements`.
+struct ViewSelection {
+  ViewBlock block;
+  int stored_nu = 0;
+  std::size_t view_elements = 0;
+  std::size_t Elements() const { return static_cast<std::size_t>(block.nu) * block.nv * view_elements; }
+};
+
+ViewSelection SelectionOf(const H5::DataSet& dataset, const ViewBlock& block, int stored_nu) {
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  std::size_t view_elements = 1;
+  for (std::size_t i = 2; i < dims.size(); ++i) view_elements *= static_cast<std::size_t>(dims[i]);
+  return {block, stored_nu, view_elements};
+}
+
+// The block's views as runs of consecutive views in the file's order, each one hyperslab: the whole block at once
+// when it is as wide as the stored light field (whole rows of views; all of the light field, read as one), else
+// one run per row of views.
+std::vector<ViewBlock> RunsOf(const ViewSelection& selection) {
+  const ViewBlock& block = selection.block;
+  if (block.nu == selection.stored_nu || block.nv == 1) return {block};
+  std::vector<ViewBlock> runs;
+  for (int v = 0; v < block.nv; ++v) runs.push_back({{block.first.u, block.first.v + v}, block.nu, 1});
+  return runs;
+}
+
+// Reads one run of views stored exactly as `type` without HDF5's own reading: datasets of one view per chunk (what
+// WriteBundle writes) are inflated in parallel, contiguous ones (the simulator's ground truth) read in parallel.
+// False when the dataset is stored otherwise.
+bool ReadRunDirectly(const H5::DataSet& dataset, const H5::PredType& type, void* destination, const ViewBlock& run,
+                     const ViewSelection& selection, const std::string& where) {
+  const std::size_t first_view = static_cast<std::size_t>(run.first.v) * selection.stored_nu + run.first.u;
+  const std::size_t count = static_cast<std::size_t>(run.nu) * run.nv * selection.view_elements;
+  return ReadViewChunks(dataset.getId(), type.getId(), destination, count, where, first_view) ||
+         ReadContiguous(dataset.getId(), type.getId(), destination, count, where, first_view * selection.view_elements);
+}
+
+// Reads one run of views through HDF5 (any layout; HDF5 converts the stored type to `type`).
+void ReadRunThroughHdf5(const H5::DataSet& dataset, const H5::PredType& type, void* destination, const ViewBlock& run) {
+  H5::DataSpace file_space = dataset.getSpace();
+  std::vector<hsize_t> count(static_cast<std::size_t>(file_space.getSimpleExtentNdims()));
+  file_space.getSimpleExtentDims(count.data());
+  std::vector<hsize_t> offset(count.size(), 0);
+  offset[0] = static_cast<hsize_t>(run.first.v);
+  offset[1] = static_cast<hsize_t>(run.first.u);
+  count[0] = static_cast<hsize_t>(run.nv);
+  count[1] = static_cast<hsize_t>(run.nu);
+  file_space.selectHyperslab(H5S_SELECT_SET, count.data(), offset.data());
+  const H5::DataSpace memory_space(static_cast<int>(count.size()), count.data());
+  dataset.read(destination, type, memory_space, file_space);
+}
+
+// Reads the selected views of a dataset [nv][nu][...] into `destination` as `type`, in the block's view order:
+// directly where the dataset's layout allows, else through HDF5.
+void ReadViews(const H5::DataSet& dataset, const H5::PredType& type, void* destination, const ViewSelection& selection,
+               const std::string& where) {
+  auto* out = static_cast<char*>(destination);
+  for (const ViewBlock& run : RunsOf(selection)) {
+    if (!ReadRunDirectly(dataset, type, out, run, selection, where)) ReadRunThroughHdf5(dataset, type, out, run);
+    out += static_cast<std::size_t>(run.nu) * run.nv * selection.view_elements * type.getSize();
+  }
+}
+
+// Reads the selected views of a numeric dataset of any integer or float type into floats: unsigned 8/16-bit samples
+// are scaled to [0, 1] (the HCI files store uint8 views), floats are taken as they are.
+void ReadSamplesAsFloat(const H5::DataSet& dataset, float* destination, const ViewSelection& selection,
+                        const std::string& where) {
+  const std::size_t count = selection.Elements();
+  const auto read = [&](void* values, const H5::PredType& type) { ReadViews(dataset, type, values, selection, where); };
   const H5T_class_t type_class = dataset.getTypeClass();
   if (type_class == H5T_FLOAT) {
     read(destination, H5::PredType::NATIVE_FLOAT);
@@ -127,8 +195,8 @@ H5::FileAccPropList AccessFor(const std::string& metadata) {
   return access;
 }
 
-LightField ReadLightFieldDataset(const H5::H5File& file, const std::string& name) {
-  const H5::DataSet dataset = file.openDataSet("LF");
+// The light field's shape as dataset LF declares it (channels: 1..3, a 4th is dropped on reading).
+LightFieldShape StoredShape(const H5::DataSet& dataset, const std::string& name) {
   const std::vector<hsize_t> dims = Dimensions(dataset);
   if (dims.size() != 5 || dims[4] < 1 || dims[4] > 4)
     ThrowFileError(name, "dataset LF has shape " + DimsText(dims) + ", expected nv x nu x H x W x C (C = 1..4)");
@@ -140,15 +208,27 @@ LightField ReadLightFieldDataset(const H5::H5File& file, const std::string& name
   shape.height = static_cast<int>(dims[2]);
   shape.width = static_cast<int>(dims[3]);
   shape.channels = static_cast<int>(std::min<hsize_t>(dims[4], 3));
+  return shape;
+}
+
+// The block's views of dataset LF, whose light field has the shape `stored`.
+LightField ReadLightFieldDataset(const H5::DataSet& dataset, const LightFieldShape& stored, const ViewBlock& block,
+                                 const std::string& name) {
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  const LightFieldShape shape = BlockShape(stored, block);
   // Samples become float32 in memory (all of RGBA while the alpha channel is dropped).
-  CheckDeclaredAllocation(name + ": dataset LF", SaturatingBytes({dims.begin(), dims.end()}, sizeof(float)),
-                          FileBytes(name));
+  CheckDeclaredAllocation(
+      name + ": dataset LF",
+      SaturatingBytes({static_cast<hsize_t>(block.nv), static_cast<hsize_t>(block.nu), dims[2], dims[3], dims[4]},
+                      sizeof(float)),
+      FileBytes(name));
+  const ViewSelection selection = SelectionOf(dataset, block, stored.nu);
   LightField light_field(shape);
   if (static_cast<int>(dims[4]) == shape.channels) {
-    ReadSamplesAsFloat(dataset, light_field.data(), light_field.size(), name + ": LF");
+    ReadSamplesAsFloat(dataset, light_field.data(), selection, name + ": LF");
   } else {  // RGBA: drop the alpha channel
     std::vector<float> all(shape.TotalSamples() / 3 * 4);
-    ReadSamplesAsFloat(dataset, all.data(), all.size(), name + ": LF");
+    ReadSamplesAsFloat(dataset, all.data(), selection, name + ": LF");
     for (std::size_t i = 0, n = all.size() / 4; i < n; ++i) std::copy_n(&all[i * 4], 3, light_field.data() + i * 3);
   }
   return light_field;
@@ -194,51 +274,63 @@ void WidenInPlace(std::int32_t* values, std::size_t count) {
   for (std::size_t i = end; i-- > 0;) widen(i);  // downwards, each label read before its bytes are written
 }
 
-// Every label of a 16-bit dataset (what WriteBundle and the simulator store) as it is stored, through
+// The selected labels of a 16-bit dataset (what WriteBundle and the simulator store) as they are stored, through
 // ReadViewChunks or ReadContiguous (in parallel), then widened in place: HDF5's conversion to int32 runs on one
 // thread, and the labels were filled before it wrote them (the simulator's 15x15 ground truth holds 60 M labels).
 // Empty when the dataset is stored otherwise (HDF5 then reads it).
 template <typename Narrow>
 std::optional<Labels> ReadNarrowLabels(const H5::DataSet& dataset, const H5::PredType& type,
-                                       const LightFieldShape& shape, const std::string& where) {
+                                       const LightFieldShape& shape, const ViewSelection& selection,
+                                       const std::string& where) {
   Labels labels(shape, Labels::Unfilled{});
-  const std::size_t count = labels.size();
-  if (!ReadViewChunks(dataset.getId(), type.getId(), labels.data(), count, where) &&
-      !ReadContiguous(dataset.getId(), type.getId(), labels.data(), count, where))
-    return std::nullopt;
-  WidenInPlace<Narrow>(labels.data(), count);
+  auto* narrow = reinterpret_cast<unsigned char*>(labels.data());  // the runs, one after another, as stored
+  for (const ViewBlock& run : RunsOf(selection)) {
+    if (!ReadRunDirectly(dataset, type, narrow, run, selection, where)) return std::nullopt;
+    narrow += static_cast<std::size_t>(run.nu) * run.nv * selection.view_elements * sizeof(Narrow);
+  }
+  WidenInPlace<Narrow>(labels.data(), labels.size());
   return labels;
 }
 
 std::optional<Labels> ReadSixteenBitLabels(const H5::DataSet& dataset, const LightFieldShape& shape,
-                                           const std::string& where) {
+                                           const ViewSelection& selection, const std::string& where) {
   const H5::IntType type = dataset.getIntType();
   if (type.getSize() != 2) return std::nullopt;
   if (type.getSign() == H5T_SGN_NONE)  // never below kUnlabelled
-    return ReadNarrowLabels<std::uint16_t>(dataset, H5::PredType::NATIVE_UINT16, shape, where);
-  std::optional<Labels> labels = ReadNarrowLabels<std::int16_t>(dataset, H5::PredType::NATIVE_INT16, shape, where);
+    return ReadNarrowLabels<std::uint16_t>(dataset, H5::PredType::NATIVE_UINT16, shape, selection, where);
+  std::optional<Labels> labels =
+      ReadNarrowLabels<std::int16_t>(dataset, H5::PredType::NATIVE_INT16, shape, selection, where);
   if (labels) RequireValidLabelValues(*labels, where);
   return labels;
 }
 
-// Labels as nv x nu x H x W, or H x W for the centre view only (other views then stay unlabelled).
-Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const LightFieldShape& shape,
-                         const std::string& name) {
+// The block's labels of a light field of the shape `stored`: the dataset holds nv x nu x H x W labels, or H x W
+// for the centre view only (the other views then stay unlabelled, and all views when the block leaves the centre
+// out).
+Labels ReadLabelsDataset(const H5::H5File& file, const char* dataset_name, const LightFieldShape& stored,
+                         const ViewBlock& block, const std::string& name) {
   const H5::DataSet dataset = file.openDataSet(dataset_name);
   const std::vector<hsize_t> dims = Dimensions(dataset);
   const std::string where = name + ": dataset " + dataset_name;
   if (dataset.getTypeClass() != H5T_INTEGER) ThrowFileError(where, "does not hold integers");
-  CheckSpatialMatch(dims, shape, where);
+  CheckSpatialMatch(dims, stored, where);
+  const LightFieldShape shape = BlockShape(stored, block);
   if (dims.size() == 4) {
-    if (dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu))
-      ThrowFileError(where, "has " + DimsText(dims) + " but the light field has " + ToString(shape));
-    if (std::optional<Labels> sixteen = ReadSixteenBitLabels(dataset, shape, where)) return std::move(*sixteen);
+    if (dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
+      ThrowFileError(where, "has " + DimsText(dims) + " but the light field has " + ToString(stored));
+    const ViewSelection selection = SelectionOf(dataset, block, stored.nu);
+    if (std::optional<Labels> sixteen = ReadSixteenBitLabels(dataset, shape, selection, where))
+      return std::move(*sixteen);
+    Labels labels(shape);
+    ReadViews(dataset, H5::PredType::NATIVE_INT32, labels.data(), selection, where);
+    RequireValidLabelValues(labels, where);
+    return labels;
   }
   Labels labels(shape);
-  if (dims.size() == 4) {
-    dataset.read(labels.data(), H5::PredType::NATIVE_INT32);
-  } else if (dims.size() == 2) {
-    dataset.read(labels.ViewData(shape.Centre()), H5::PredType::NATIVE_INT32);
+  const ViewIndex centre = stored.Centre();
+  const ViewIndex in_block{centre.u - block.first.u, centre.v - block.first.v};
+  if (dims.size() == 2) {
+    if (shape.Contains(in_block)) dataset.read(labels.ViewData(in_block), H5::PredType::NATIVE_INT32);
   } else {
     ThrowFileError(where, "has shape " + DimsText(dims) + ", expected nv x nu x H x W or H x W");
   }
@@ -313,40 +405,64 @@ void RequireHdf5File(const fs::path& path) {
 
 }  // namespace
 
-Bundle ReadBundle(const fs::path& path) {
+namespace {
+
+// The views `block` names must lie inside `shape`'s (lfsp::Error naming `where` otherwise).
+void RequireBlockInside(const ViewBlock& block, const LightFieldShape& shape, const std::string& where) {
+  if (block.nu < 1 || block.nv < 1 || block.first.u < 0 || block.first.v < 0 || block.first.u > shape.nu - block.nu ||
+      block.first.v > shape.nv - block.nv)
+    throw Error(where + ": the " + std::to_string(block.nu) + " x " + std::to_string(block.nv) + " views from view (" +
+                std::to_string(block.first.u) + ", " + std::to_string(block.first.v) + ") are not all among the " +
+                std::to_string(shape.nu) + " x " + std::to_string(shape.nv) + " views of " + ToString(shape));
+}
+
+// The block's views of the samples, with the transfer and metadata, and their weights if `parts` asks for them.
+LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& samples, const LightFieldShape& stored,
+                                     const ViewBlock& block, const BundleParts& parts, const std::string& name) {
+  LightField light_field = ReadLightFieldDataset(samples, stored, block, name);
+  const std::string transfer = ReadStringAttribute(file, "transfer");
+  light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromString(transfer);
+  const std::string metadata = ReadStringAttribute(file, "metadata");
+  if (!metadata.empty()) {
+    light_field.metadata = ParseUntrustedJsonObject(metadata, name + ": attribute 'metadata'");
+  }
+  if (!parts.weights || !file.nameExists("weights")) return light_field;
+  const H5::DataSet dataset = file.openDataSet("weights");
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
+    ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
+  CheckSpatialMatch(dims, stored, name + ": dataset weights");
+  light_field.EnableWeights();
+  ReadSamplesAsFloat(dataset, light_field.weights().data(), SelectionOf(dataset, block, stored.nu), name + ": weights");
+  return light_field;
+}
+
+}  // namespace
+
+Bundle ReadBundle(const fs::path& path) { return ReadBundle(path, BundleParts{}); }
+
+Bundle ReadBundle(const fs::path& path, const BundleParts& parts) {
   const std::string name = path.string();
   RequireHdf5File(path);
   try {
     const ForeignCrashGuard guard(name, "libhdf5");
     const H5::H5File file(name, H5F_ACC_RDONLY);
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
+    const H5::DataSet samples = file.openDataSet("LF");
+    const LightFieldShape stored = StoredShape(samples, name);
+    const ViewBlock block = parts.views.value_or(AllViews(stored));
+    RequireBlockInside(block, stored, name);
     Bundle bundle;
-    bundle.light_field = ReadLightFieldDataset(file, name);
-    LightField& light_field = bundle.light_field;
-    const LightFieldShape& shape = light_field.shape();
-
-    const std::string transfer = ReadStringAttribute(file, "transfer");
-    light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromString(transfer);
-    const std::string metadata = ReadStringAttribute(file, "metadata");
-    if (!metadata.empty()) {
-      light_field.metadata = ParseUntrustedJsonObject(metadata, name + ": attribute 'metadata'");
+    if (parts.samples) bundle.light_field = ReadLightFieldWithWeights(file, samples, stored, block, parts, name);
+    if (parts.disparity) {
+      if (file.nameExists("disparity")) {
+        bundle.disparity = ReadDisparityDataset(file, stored, name);
+      } else {
+        bundle.disparity = ReadOldHciDisparity(file, stored, name);
+      }
     }
-
-    if (file.nameExists("weights")) {
-      const H5::DataSet dataset = file.openDataSet("weights");
-      const std::vector<hsize_t> dims = Dimensions(dataset);
-      if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(shape.nv) || dims[1] != static_cast<hsize_t>(shape.nu))
-        ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
-      CheckSpatialMatch(dims, shape, name + ": dataset weights");
-      light_field.EnableWeights();
-      ReadSamplesAsFloat(dataset, light_field.weights().data(), light_field.weights().size(), name + ": weights");
-    }
-    if (file.nameExists("disparity")) {
-      bundle.disparity = ReadDisparityDataset(file, shape, name);
-    } else {
-      bundle.disparity = ReadOldHciDisparity(file, shape, name);
-    }
-    if (file.nameExists("labels")) bundle.labels = ReadLabelsDataset(file, "labels", shape, name);
+    if (!parts.labels) return bundle;
+    if (file.nameExists("labels")) bundle.labels = ReadLabelsDataset(file, "labels", stored, block, name);
 
     // Old HCI layout: ground-truth labels live in a sibling labels.h5.
     const fs::path sibling_labels = path.parent_path() / "labels.h5";
@@ -355,9 +471,22 @@ Bundle ReadBundle(const fs::path& path) {
       RequireRegularFile(sibling_labels);
       const H5::H5File labels_file(sibling_labels.string(), H5F_ACC_RDONLY);
       if (labels_file.nameExists("GT_LABELS"))
-        bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", shape, sibling_labels.string());
+        bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", stored, block, sibling_labels.string());
     }
     return bundle;
+  } catch (const H5::Exception& error) {
+    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+  }
+}
+
+LightFieldShape ReadBundleShape(const fs::path& path) {
+  const std::string name = path.string();
+  RequireHdf5File(path);
+  try {
+    const ForeignCrashGuard guard(name, "libhdf5");
+    const H5::H5File file(name, H5F_ACC_RDONLY);
+    if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
+    return StoredShape(file.openDataSet("LF"), name);
   } catch (const H5::Exception& error) {
     ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
   }
@@ -382,7 +511,7 @@ Labels ReadLabels(const fs::path& path) {
                             FileBytes(path));
     const LightFieldShape shape{static_cast<int>(dims[1]), static_cast<int>(dims[0]), static_cast<int>(dims[3]),
                                 static_cast<int>(dims[2]), 1};
-    return ReadLabelsDataset(file, dataset_name, shape, name);
+    return ReadLabelsDataset(file, dataset_name, shape, AllViews(shape), name);
   } catch (const H5::Exception& error) {
     ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
   }

@@ -149,7 +149,8 @@ bool StoredOneViewPerChunk(hid_t dataset, hid_t memory_type, const std::vector<h
 
 }  // namespace
 
-bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name) {
+bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name,
+                    std::size_t first_view) {
   const hid_t space = H5Dget_space(dataset);
   if (space < 0) return false;
   const int rank = H5Sget_simple_extent_ndims(space);
@@ -159,8 +160,9 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   if (!read_dims || !StoredOneViewPerChunk(dataset, memory_type, dims)) return false;
   std::size_t chunk_elements = 1;
   for (std::size_t i = 2; i < dims.size(); ++i) chunk_elements *= static_cast<std::size_t>(dims[i]);
-  const std::size_t views = static_cast<std::size_t>(dims[0] * dims[1]);
-  if (views * chunk_elements != count) return false;
+  const std::size_t all_views = static_cast<std::size_t>(dims[0] * dims[1]);
+  const std::size_t views = count / chunk_elements;  // read: views [first_view, first_view + views)
+  if (views * chunk_elements != count || first_view > all_views || views > all_views - first_view) return false;
   const std::size_t element_size = H5Tget_size(memory_type);
   const std::size_t chunk_bytes = chunk_elements * element_size;
   // HDF5's own deflate filter counts in 32 bits: larger chunks are left to it (and to its error).
@@ -179,9 +181,10 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   for (std::size_t first = 0; first < views; first += batch) {
     const std::size_t count_in_batch = std::min(batch, views - first);
     for (std::size_t k = 0; k < count_in_batch; ++k) {
+      const std::size_t camera = first_view + first + k;
       std::vector<hsize_t> offset(dims.size(), 0);
-      offset[0] = static_cast<hsize_t>((first + k) / dims[1]);
-      offset[1] = static_cast<hsize_t>((first + k) % dims[1]);
+      offset[0] = static_cast<hsize_t>(camera / dims[1]);
+      offset[1] = static_cast<hsize_t>(camera % dims[1]);
       hsize_t stored = 0;
       if (H5Dget_chunk_storage_size(dataset, offset.data(), &stored) < 0 || stored == 0 ||
           stored > std::numeric_limits<std::uint32_t>::max())
@@ -189,20 +192,21 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
       // A chunk index that lies must not size the allocations: the chunks together fit in the file.
       stored_total += stored;
       if (stored_total > file_bytes)
-        ThrowFileError(name, "the chunks up to view " + std::to_string(first + k) + " declare " +
+        ThrowFileError(name, "the chunks up to view " + std::to_string(camera) + " declare " +
                                  std::to_string(stored_total) + " bytes, more than the whole file");
       raw[k].resize(static_cast<std::size_t>(stored));
       std::uint32_t filter_mask = 0;
       if (H5Dread_chunk(dataset, H5P_DEFAULT, offset.data(), &filter_mask, raw[k].data()) < 0)
-        ThrowFileError(name, "reading the chunk of view " + std::to_string(first + k) + " failed");
+        ThrowFileError(name, "reading the chunk of view " + std::to_string(camera) + " failed");
       if (filter_mask != 0) return false;  // a filter was skipped for this chunk: HDF5's own read knows what to do
     }
     // A chunk that does not inflate is an lfsp::Error, rethrown by ParallelFor once the batch is done.
     ParallelFor(static_cast<int>(count_in_batch), [&](int k) {
-      const std::size_t view = first + static_cast<std::size_t>(k);
+      const std::size_t view = first + static_cast<std::size_t>(k);  // in the run read
       std::vector<std::uint8_t> planes(chunk_bytes);
       if (!InflateChunk(raw[static_cast<std::size_t>(k)], planes))
-        ThrowFileError(name, "the chunk of view " + std::to_string(view) + " does not inflate to its size");
+        ThrowFileError(name,
+                       "the chunk of view " + std::to_string(first_view + view) + " does not inflate to its size");
       Unshuffle(planes.data(), chunk_elements, element_size, bytes + view * chunk_bytes);
     });
   }

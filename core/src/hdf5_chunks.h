@@ -22,7 +22,10 @@ void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, 
 // dataset is laid out otherwise (not one view per chunk, other filters, filter parameters or types, a chunk not
 // stored or stored with a filter skipped); `destination` may then hold some views already, and the caller reads the
 // whole dataset through HDF5. Throws lfsp::Error naming `name` when reading a raw chunk fails, when the chunks'
-// declared sizes add up to more than the file, or when a chunk does not inflate to exactly its size.
-bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name);
+// declared sizes add up to more than the file, or when a chunk does not inflate to exactly its size. With
+// `first_view`, the views from camera number `first_view` on (`count` elements: whole views) are read, without the
+// rest.
+bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name,
+                    std::size_t first_view = 0);
 
 }  // namespace lfsp

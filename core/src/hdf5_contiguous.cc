@@ -14,8 +14,8 @@
 namespace lfsp {
 namespace {
 
-// True if `dataset` holds its `count` elements of `memory_type` in one unfiltered block inside its own file.
-bool StoredContiguously(hid_t dataset, hid_t memory_type, std::size_t count) {
+// True if `dataset` holds its `elements` elements of `memory_type` in one unfiltered block inside its own file.
+bool StoredContiguously(hid_t dataset, hid_t memory_type, std::size_t elements) {
   const hid_t properties = H5Dget_create_plist(dataset);
   if (properties < 0) return false;
   const bool plain = H5Pget_layout(properties) == H5D_CONTIGUOUS && H5Pget_nfilters(properties) == 0 &&
@@ -28,8 +28,8 @@ bool StoredContiguously(hid_t dataset, hid_t memory_type, std::size_t count) {
   const hid_t space = H5Dget_space(dataset);
   const hssize_t points = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
   if (space >= 0) H5Sclose(space);
-  return same_type && points >= 0 && static_cast<std::size_t>(points) == count &&
-         H5Dget_storage_size(dataset) == count * H5Tget_size(memory_type);
+  return same_type && points >= 0 && static_cast<std::size_t>(points) == elements &&
+         H5Dget_storage_size(dataset) == elements * H5Tget_size(memory_type);
 }
 
 // The file holding a dataset, with HDF5's own descriptor of it: the very file HDF5 read the dataset's layout from,
@@ -59,16 +59,29 @@ class FileOf {
   int fd_ = -1;
 };
 
+// The number of elements of `dataset`, or 0 if unknown.
+std::size_t ElementCount(hid_t dataset) {
+  const hid_t space = H5Dget_space(dataset);
+  const hssize_t points = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+  if (space >= 0) H5Sclose(space);
+  return points > 0 ? static_cast<std::size_t>(points) : 0;
+}
+
 }  // namespace
 
-bool ReadContiguous(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name) {
-  if (count == 0 || !StoredContiguously(dataset, memory_type, count)) return false;
-  const haddr_t offset = H5Dget_offset(dataset);  // from the beginning of the file, past any user block
+bool ReadContiguous(hid_t dataset, hid_t memory_type, void* destination, std::size_t count, const std::string& name,
+                    std::size_t first) {
+  const std::size_t elements = ElementCount(dataset);
+  if (count == 0 || first > elements || count > elements - first || !StoredContiguously(dataset, memory_type, elements))
+    return false;
+  const haddr_t start = H5Dget_offset(dataset);  // from the beginning of the file, past any user block
   const FileOf file(dataset);
   struct stat status {};
-  if (offset == HADDR_UNDEF || file.fd() < 0 || fstat(file.fd(), &status) != 0) return false;
+  if (start == HADDR_UNDEF || file.fd() < 0 || fstat(file.fd(), &status) != 0) return false;
   const auto file_bytes = static_cast<std::uintmax_t>(status.st_size);
-  const std::size_t bytes = count * H5Tget_size(memory_type);
+  const std::size_t element_size = H5Tget_size(memory_type);
+  const std::size_t bytes = count * element_size;
+  const std::uintmax_t offset = start + first * element_size;
   if (offset > file_bytes || bytes > file_bytes - offset)
     ThrowFileError(name, "declares " + std::to_string(bytes) + " bytes at offset " + std::to_string(offset) +
                              ", beyond the end of the " + std::to_string(file_bytes) + "-byte file");

@@ -103,25 +103,44 @@ ViewRegistration RegisterViews(const LightField& decoded, const LightField& trut
     throw Error("register views: the light fields differ in shape (" + ToString(decoded.shape()) + " and " +
                 ToString(truth.shape()) + ")");
   ViewRegistration result;
-  const LightFieldShape& shape = truth.shape();
-  const int views = static_cast<int>(shape.Views());
-  result.views.resize(shape.Views());
+  result.views.resize(truth.shape().Views());
+  RegisterBlock(decoded, truth, ViewIndex{0, 0}, min_weight, margin, mask, result);
+  CountRegistered(result);
+  return result;
+}
+
+void RegisterBlock(const LightField& decoded, const LightField& truth_views, ViewIndex first, double min_weight,
+                   int margin, const cv::Mat& mask, ViewRegistration& result) {
+  const LightFieldShape& shape = decoded.shape();
+  const LightFieldShape& block = truth_views.shape();
+  if (block.width != shape.width || block.height != shape.height || block.channels != shape.channels || first.u < 0 ||
+      first.v < 0 || first.u + block.nu > shape.nu || first.v + block.nv > shape.nv)
+    throw Error("register views: the ideal light field's " + ToString(block) + " from view (" +
+                std::to_string(first.u) + ", " + std::to_string(first.v) + ") do not lie inside the decoded " +
+                ToString(shape));
+  if (result.views.size() != shape.Views()) throw Error("register views: the result is not sized to every view");
   // Views in parallel (each is independent); the exception of the first view that failed is rethrown as it was.
-  ParallelFor(views, [&](int cam) {
-    ViewShift& entry = result.views[static_cast<std::size_t>(cam)];
-    entry.view = ViewFromCameraNumber(cam, shape.nu);
-    entry.weight = MeanViewWeight(truth, entry.view);
+  ParallelFor(static_cast<int>(block.Views()), [&](int index) {
+    const ViewIndex in_block = ViewFromCameraNumber(index, block.nu);
+    const ViewIndex view{first.u + in_block.u, first.v + in_block.v};
+    ViewShift& entry = result.views[static_cast<std::size_t>(CameraNumber(view, shape.nu))];
+    entry.view = view;
+    entry.weight = MeanViewWeight(truth_views, in_block);
     if (entry.weight <= min_weight) return;
-    entry.shift = MeasureShift(LinearGreyOf(truth.View(entry.view), truth.transfer),
-                               LinearGreyOf(decoded.View(entry.view), decoded.transfer), margin, mask);
+    entry.shift = MeasureShift(LinearGreyOf(truth_views.View(in_block), truth_views.transfer),
+                               LinearGreyOf(decoded.View(view), decoded.transfer), margin, mask);
     entry.registered = true;
   });
-  for (const ViewShift& entry : result.views) {
+}
+
+void CountRegistered(ViewRegistration& registration) {
+  registration.registered = 0;
+  registration.worst = 0.0;
+  for (const ViewShift& entry : registration.views) {
     if (!entry.registered) continue;
-    ++result.registered;
-    result.worst = std::max({result.worst, std::abs(entry.shift.dx), std::abs(entry.shift.dy)});
+    ++registration.registered;
+    registration.worst = std::max({registration.worst, std::abs(entry.shift.dx), std::abs(entry.shift.dy)});
   }
-  return result;
 }
 
 }  // namespace lfsp

@@ -24,16 +24,21 @@ namespace {
 template <typename T>
 void CopyCentralViews(const Array4D<T>& from, Array4D<T>& to) {
   const int n = to.shape().nu;
-  const int u0 = (from.shape().nu - n) / 2, v0 = (from.shape().nv - n) / 2;
+  const ViewIndex first = CentralViewBlock(from.shape(), n).first;
   const std::size_t samples = from.shape().ViewSamples();
   for (int v = 0; v < n; ++v)
     for (int u = 0; u < n; ++u) {
-      const T* source = from.ViewData(ViewIndex{u + u0, v + v0});
+      const T* source = from.ViewData(ViewIndex{u + first.u, v + first.v});
       std::copy(source, source + samples, to.ViewData(ViewIndex{u, v}));
     }
 }
 
 }  // namespace
+
+ViewBlock CentralViewBlock(const LightFieldShape& shape, int n) {
+  CentralShape(shape, n);  // throws with the reason if it cannot be taken
+  return {{(shape.nu - n) / 2, (shape.nv - n) / 2}, n, n};
+}
 
 LightField CentralViews(const LightField& light_field, int n) {
   LightField out(CentralShape(light_field.shape(), n));

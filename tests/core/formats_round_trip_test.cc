@@ -330,6 +330,114 @@ TEST(Hdf5Bundle, SixteenBitLabelsWidenedInPlaceReadBackExactly) {
   }
 }
 
+// The views of `block` of a light field or labels, copied out of the whole.
+template <typename T>
+void CopyBlock(const Array4D<T>& whole, const ViewBlock& block, Array4D<T>& part) {
+  const std::size_t samples = whole.shape().ViewSamples();
+  for (int v = 0; v < block.nv; ++v)
+    for (int u = 0; u < block.nu; ++u) {
+      const T* source = whole.ViewData(ViewIndex{block.first.u + u, block.first.v + v});
+      std::copy(source, source + samples, part.ViewData(ViewIndex{u, v}));
+    }
+}
+
+// Dataset LF chunked in half views (not one view per chunk, as WriteBundle never writes it): only HDF5 reads it.
+void WriteHalfViewChunkedSamples(const LightField& light_field, const std::filesystem::path& path) {
+  const LightFieldShape& shape = light_field.shape();
+  const hsize_t dims[5] = {static_cast<hsize_t>(shape.nv), static_cast<hsize_t>(shape.nu),
+                           static_cast<hsize_t>(shape.height), static_cast<hsize_t>(shape.width), 3};
+  const hsize_t chunk[5] = {1, 1, static_cast<hsize_t>(shape.height / 2), static_cast<hsize_t>(shape.width), 3};
+  const hid_t file = H5Fcreate(path.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t space = H5Screate_simple(5, dims, nullptr);
+  const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(properties, 5, chunk);
+  const hid_t dataset = H5Dcreate2(file, "LF", H5T_IEEE_F32LE, space, H5P_DEFAULT, properties, H5P_DEFAULT);
+  EXPECT_GE(H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, light_field.data()), 0);
+  H5Dclose(dataset);
+  H5Pclose(properties);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+// Parts of a bundle (issue 46: the pipeline reads the simulator's truth a row of views at a time) are exactly those
+// views of the whole, whichever reader takes them: contiguous (float32, uint16), one deflated chunk per view, or
+// HDF5's own; labels in each stored type; a block as wide as the light field (one run) or narrower (a run per row).
+TEST(Hdf5Bundle, PartsOfABundleAreThoseViewsOfTheWhole) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = QuantisedLightField(16, 5);
+  bundle.light_field.EnableWeights();
+  for (std::size_t i = 0; i < bundle.light_field.weights().size(); ++i)
+    bundle.light_field.weights().data()[i] = static_cast<float>(i % 65536) / 65535.0f;
+  DisparityMap disparity(64, 48);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) disparity.at(y, x) = 0.01f * static_cast<float>(x * y);
+  bundle.disparity = disparity;
+  std::vector<std::filesystem::path> files;
+  for (const std::int32_t offset : {0, -1, 100000}) {  // labels stored as uint16, int16, int32
+    Labels labels(bundle.light_field.shape());
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      labels.data()[i] = (i % 5 == 0 && offset < 0) ? -1 : static_cast<std::int32_t>(i % 3001) + std::max(offset, 0);
+    bundle.labels = labels;
+    for (const BundleWriteOptions options :
+         {BundleWriteOptions{SampleStorage::kFloat32, 0}, BundleWriteOptions{SampleStorage::kUint16, 0},
+          BundleWriteOptions{SampleStorage::kUint16, 1}}) {
+      files.push_back(temp / ("parts_" + std::to_string(offset) + "_" + std::to_string(files.size()) + ".h5"));
+      WriteBundle(bundle, files.back(), options);
+    }
+  }
+  files.push_back(temp / "half_view_chunks.h5");
+  WriteHalfViewChunkedSamples(bundle.light_field, files.back());
+
+  for (const std::filesystem::path& path : files) {
+    const Bundle whole = ReadBundle(path);
+    const LightFieldShape& shape = whole.light_field.shape();
+    for (const ViewBlock block : {ViewBlock{{0, 3}, 5, 1}, ViewBlock{{0, 1}, 5, 3}, ViewBlock{{1, 1}, 3, 3},
+                                  ViewBlock{{2, 4}, 1, 1}, ViewBlock{{3, 0}, 2, 5}}) {
+      BundleParts parts;
+      parts.views = block;
+      const Bundle part = ReadBundle(path, parts);
+      LightFieldShape part_shape = shape;
+      part_shape.nu = block.nu;
+      part_shape.nv = block.nv;
+      LightField expected(part_shape);
+      CopyBlock(whole.light_field, block, expected);
+      ExpectSameSamples(part.light_field, expected);
+      ASSERT_EQ(part.light_field.HasWeights(), whole.light_field.HasWeights()) << path;
+      if (whole.light_field.HasWeights()) {
+        Array4D<float> weights(LightFieldShape{block.nu, block.nv, shape.width, shape.height, 1});
+        CopyBlock(whole.light_field.weights(), block, weights);
+        EXPECT_EQ(std::memcmp(part.light_field.weights().data(), weights.data(), weights.size() * sizeof(float)), 0)
+            << path;
+      }
+      ASSERT_EQ(part.labels.has_value(), whole.labels.has_value()) << path;
+      if (whole.labels) {
+        Labels labels(LightFieldShape{block.nu, block.nv, shape.width, shape.height, 1});
+        CopyBlock(*whole.labels, block, labels);
+        EXPECT_EQ(std::memcmp(part.labels->data(), labels.data(), labels.size() * sizeof(std::int32_t)), 0) << path;
+      }
+      ASSERT_EQ(part.disparity.has_value(), whole.disparity.has_value()) << path;
+      if (whole.disparity) EXPECT_EQ(part.disparity->at(47, 63), whole.disparity->at(47, 63));
+    }
+    EXPECT_EQ(ReadBundleShape(path), shape);
+  }
+
+  // Only what is asked for: labels alone leave the light field empty.
+  BundleParts labels_only;
+  labels_only.views = ViewBlock{{1, 1}, 3, 3};
+  labels_only.samples = false;
+  labels_only.disparity = false;
+  const Bundle labels = ReadBundle(files.front(), labels_only);
+  EXPECT_TRUE(labels.light_field.empty());
+  EXPECT_FALSE(labels.disparity.has_value());
+  ASSERT_TRUE(labels.labels.has_value());
+  EXPECT_EQ(labels.labels->shape().nu, 3);
+  // A block outside the views is refused, naming the file.
+  BundleParts outside;
+  outside.views = ViewBlock{{3, 3}, 3, 3};
+  EXPECT_THROW((void)ReadBundle(files.front(), outside), Error);
+}
+
 TEST(Hdf5Bundle, SameContentGivesTheSameBytes) {
   TempDir temp;
   Bundle bundle;

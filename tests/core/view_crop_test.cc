@@ -57,6 +57,19 @@ TEST(CentralViews, RefusesCropsWithoutACommonCentre) {
   EXPECT_NO_THROW(CentralViews(full, 5));
 }
 
+// Where the central views lie (the pipeline reads only those of the simulator's labels): the block CentralViews
+// copies, with the same checks.
+TEST(CentralViewBlock, IsTheBlockCentralViewsCopies) {
+  const LightField full = Numbered(5);
+  const ViewBlock block = CentralViewBlock(full.shape(), 3);
+  EXPECT_EQ(block.first, (ViewIndex{1, 1}));
+  EXPECT_EQ(block.nu, 3);
+  EXPECT_EQ(block.nv, 3);
+  const LightField cropped = CentralViews(full, 3);
+  EXPECT_EQ(cropped.View({0, 0}).at<cv::Vec3f>(0, 0), full.View(block.first).at<cv::Vec3f>(0, 0));
+  EXPECT_THROW(CentralViewBlock(full.shape(), 4), Error);
+}
+
 // A 9x9 light field whose views' weight falls with their Chebyshev ring from the centre: 1.0, 0.9, 0.7, 0.45, 0.2.
 LightField RingWeighted() {
   LightField light_field(LightFieldShape{9, 9, 4, 4, 3});
@@ -207,6 +220,58 @@ TEST(RegisterViews, MeasuresEachWellLitViewAndSkipsTheDimOnes) {
     }
   }
   EXPECT_THROW(RegisterViews(decoded, LightField(LightFieldShape{3, 3, 64, 64, 3}), 0.5, 4), Error);
+}
+
+// The ideal light field a row of views at a time (what the pipeline reads of the simulator's truth) gives exactly
+// RegisterViews's figures.
+TEST(RegisterViews, RowByRowGivesTheSameFigures) {
+  LightField truth(LightFieldShape{5, 5, 64, 64, 3});
+  truth.EnableWeights();
+  LightField decoded(truth.shape());
+  for (int v = 0; v < 5; ++v)
+    for (int u = 0; u < 5; ++u) {
+      const ViewIndex view{u, v};
+      const double shift = 0.02 * (u - 2) - 0.03 * (v - 2);
+      float* w = truth.weights().ViewData(view);
+      std::fill(w, w + 64 * 64, 0.2f + 0.1f * static_cast<float>(4 - std::abs(u - 2) - std::abs(v - 2)));
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          for (int c = 0; c < 3; ++c) {
+            truth.View(view).at<cv::Vec3f>(y, x)[c] =
+                static_cast<float>(0.5 + 0.2 * std::sin(0.3 * x + c) * std::cos(0.23 * y));
+            decoded.View(view).at<cv::Vec3f>(y, x)[c] =
+                static_cast<float>(0.5 + 0.2 * std::sin(0.3 * (x - shift) + c) * std::cos(0.23 * y));
+          }
+    }
+  const ViewRegistration whole = RegisterViews(decoded, truth, 0.5, 4);
+  ViewRegistration rows;
+  rows.views.resize(truth.shape().Views());
+  for (int v = 0; v < 5; ++v) {
+    LightField row(LightFieldShape{5, 1, 64, 64, 3});
+    row.EnableWeights();
+    for (int u = 0; u < 5; ++u) {
+      truth.View({u, v}).copyTo(row.View({u, 0}));
+      const float* w = truth.weights().ViewData({u, v});
+      std::copy(w, w + 64 * 64, row.weights().ViewData({u, 0}));
+    }
+    RegisterBlock(decoded, row, ViewIndex{0, v}, 0.5, 4, cv::Mat(), rows);
+  }
+  CountRegistered(rows);
+  EXPECT_GT(whole.registered, 0);
+  EXPECT_LT(whole.registered, 25);
+  EXPECT_EQ(rows.registered, whole.registered);
+  EXPECT_EQ(rows.worst, whole.worst);
+  for (std::size_t i = 0; i < whole.views.size(); ++i) {
+    EXPECT_EQ(rows.views[i].view, whole.views[i].view);
+    EXPECT_EQ(rows.views[i].weight, whole.views[i].weight);
+    EXPECT_EQ(rows.views[i].registered, whole.views[i].registered);
+    EXPECT_EQ(rows.views[i].shift.dx, whole.views[i].shift.dx);
+    EXPECT_EQ(rows.views[i].shift.dy, whole.views[i].shift.dy);
+  }
+  // A block that does not lie inside the decoded light field is refused.
+  EXPECT_THROW(
+      RegisterBlock(decoded, LightField(LightFieldShape{5, 1, 64, 64, 3}), ViewIndex{1, 0}, 0.5, 4, cv::Mat(), rows),
+      Error);
 }
 
 }  // namespace

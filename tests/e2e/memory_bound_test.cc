@@ -4,16 +4,19 @@
 //
 //   decode:   24 B x P + 16 B x R + 400 MB   (the slicing step: capture, white inverse and grey, lens labels and
 //                                             demosaicked RGB per pixel; the light field, RGB + weight, per ray)
-//   pipeline: the decode's, or 36 B x R + 400 MB when a simulated capture's truth is read beside the decoded light
-//             field (its samples, weights and labels: 20 B per ray)
+//   pipeline: the decode's, plus one row of views of a simulated capture's truth (16 B per ray of the row): the
+//             pipeline compares the decode with its ideal light field a row of views at a time, and reads the
+//             truth's labels only for the views it keeps, once the others are gone
 //
 // The peak is the command's max RSS (wait4's ru_maxrss, measured by RunLfsp). Before issue 46 the decode peaked at
-// 2632 MB and the pipeline at 2672 MB on this capture, over both bounds (2271 and 2476 MB). There is no timing
-// assert: the test passes on a busy machine, only slowly.
+// 2632 MB and the pipeline at 2672 MB on this capture, over both bounds (2272 and 2334 MB). The pipeline read the
+// whole truth beside the decoded light field until the thirty-second session: 2275 MB, 1.15 GB of it the truth's
+// samples, weights and labels (now 1986 MB, as the decode). Since that is within the design bound, the pipeline's
+// peak is also held to the decode's measured one plus the truth's row (2048 MB), which main's 2275 MB failed.
+// There is no timing assert: the test passes on a busy machine, only slowly.
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -34,8 +37,6 @@ using lfsp::testing::TempDir;
 constexpr double kSensorBytes = 24.0;
 // Bytes per decoded ray: RGB floats and a weight.
 constexpr double kRayBytes = 16.0;
-// A simulated capture's ideal light field and labels, read beside the decoded one to score the decode.
-constexpr double kTruthRayBytes = 20.0;
 // Code, libraries, thread stacks, small tables and the allocator's slack (MB of 2^20 bytes, as ru_maxrss / 1024).
 constexpr double kFixedMegabytes = 400.0;
 constexpr double kMegabyte = 1048576.0;
@@ -43,6 +44,7 @@ constexpr double kMegabyte = 1048576.0;
 struct Sizes {
   double sensor_pixels = 0.0;
   double rays = 0.0;
+  double view_rows = 1.0;
 };
 
 Sizes SizesFrom(const nlohmann::json& decode_summary) {
@@ -50,16 +52,18 @@ Sizes SizesFrom(const nlohmann::json& decode_summary) {
   const nlohmann::json& field = decode_summary["light_field"];
   return {grid["sensor_width"].get<double>() * grid["sensor_height"].get<double>(),
           field["nu"].get<double>() * field["nv"].get<double>() * field["width"].get<double>() *
-              field["height"].get<double>()};
+              field["height"].get<double>(),
+          field["nv"].get<double>()};
 }
 
 double DecodeBound(const Sizes& sizes) {
   return (kSensorBytes * sizes.sensor_pixels + kRayBytes * sizes.rays) / kMegabyte + kFixedMegabytes;
 }
 
-double PipelineBound(const Sizes& sizes) {
-  return std::max(DecodeBound(sizes), (kRayBytes + kTruthRayBytes) * sizes.rays / kMegabyte + kFixedMegabytes);
-}
+// One row of views of the simulated capture's truth: RGB floats and a weight per ray.
+double TruthRowMegabytes(const Sizes& sizes) { return kRayBytes * sizes.rays / sizes.view_rows / kMegabyte; }
+
+double PipelineBound(const Sizes& sizes) { return DecodeBound(sizes) + TruthRowMegabytes(sizes); }
 
 TEST(MemoryBound, FullSizeIllumCaptureDecodeAndPipelineStayUnderTheDesignBound) {
   TempDir temp;
@@ -85,8 +89,12 @@ TEST(MemoryBound, FullSizeIllumCaptureDecodeAndPipelineStayUnderTheDesignBound) 
   const auto pipeline = RunLfsp({"-q", "pipeline", capture.string(), "--out", (temp / "run").string()});
   ASSERT_EQ(pipeline.exit_status, 0) << pipeline.err;
   const double pipeline_peak = static_cast<double>(pipeline.peak_rss_kb) / 1024.0;
-  std::printf("pipeline peak %.0f MB, bound %.0f MB\n", pipeline_peak, PipelineBound(sizes));
+  std::printf("pipeline peak %.0f MB, bound %.0f MB, decode peak + a row of the truth %.0f MB\n", pipeline_peak,
+              PipelineBound(sizes), decode_peak + TruthRowMegabytes(sizes));
   EXPECT_LE(pipeline_peak, PipelineBound(sizes));
+  // The same bound against the decode as measured: the pipeline's decode writes no file, so the truth's one row is
+  // all it may add (the whole truth added 1.2 GB).
+  EXPECT_LE(pipeline_peak, decode_peak + TruthRowMegabytes(sizes));
   const nlohmann::json run = nlohmann::json::parse(ReadBytes(temp / "run" / "summary.json"));
   ASSERT_TRUE(run.contains("memory"));
   for (const auto& [stage, memory] : run["memory"].items())

@@ -41,6 +41,22 @@ void RoundToStoredPrecision(LightField& light_field, SampleStorage storage);
 // plus a sibling labels.h5 with GT_LABELS when present.
 Bundle ReadBundle(const std::filesystem::path& path);
 
+// What ReadBundle reads of a bundle. A part of a large bundle costs only its own memory: the pipeline compares a
+// decode with the simulator's 1 GB ideal light field one row of views at a time (issue 46).
+struct BundleParts {
+  // Only these views of the samples, weights and labels (a light field of the block's shape, its views in their
+  // order); the disparity stays the whole light field's centre view's. All views when empty.
+  std::optional<ViewBlock> views;
+  bool samples = true;  // false: the light field stays empty (no samples, weights, transfer or metadata)
+  bool weights = true;
+  bool disparity = true;
+  bool labels = true;
+};
+Bundle ReadBundle(const std::filesystem::path& path, const BundleParts& parts);
+
+// The shape of a bundle's light field (its dataset LF), without reading it.
+LightFieldShape ReadBundleShape(const std::filesystem::path& path);
+
 // Reads only the per-ray labels of an HDF5 file, without its light field: dataset `labels` (an lfsp bundle, as
 // `lfsp segment` writes it) or `GT_LABELS` (the old HCI layout), nv x nu x H x W of any integer type. Throws
 // lfsp::Error naming the file if it is missing, not HDF5, has neither dataset or the wrong rank.

@@ -38,6 +38,13 @@ struct LightFieldShape {
 
 std::string ToString(const LightFieldShape& shape);  // "9x9 views of 512x512x3"
 
+// A rectangular block of a light field's views: `nu` x `nv` views from view `first` (its top-left view) on.
+struct ViewBlock {
+  ViewIndex first;
+  int nu = 0;
+  int nv = 0;
+};
+
 // A dense 4D array with memory layout [v][u][y][x][c]: every view is one contiguous row-major image, so View()
 // wraps it into a cv::Mat without copying.
 template <typename T>

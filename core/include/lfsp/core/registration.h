@@ -43,4 +43,13 @@ struct ViewRegistration {
 ViewRegistration RegisterViews(const LightField& decoded, const LightField& truth, double min_weight, int margin,
                                const cv::Mat& mask = cv::Mat());
 
+// The same a block of views at a time, for a caller that cannot hold the whole ideal light field beside the decoded
+// one (the pipeline reads the simulator's 1 GB truth a row of views at a time): `truth_views` holds the ideal light
+// field's views from view `first` on (a block of it, with its weights), and each of them is registered against the
+// same view of `decoded` into `result.views` (sized to all of decoded's views beforehand). CountRegistered then
+// gives the count and the worst shift. The figures are RegisterViews's, whatever the blocks.
+void RegisterBlock(const LightField& decoded, const LightField& truth_views, ViewIndex first, double min_weight,
+                   int margin, const cv::Mat& mask, ViewRegistration& result);
+void CountRegistered(ViewRegistration& registration);
+
 }  // namespace lfsp

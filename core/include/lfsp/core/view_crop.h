@@ -17,6 +17,9 @@ LightField CentralViews(const LightField& light_field, int n);
 LightFieldShape CentralShape(const LightFieldShape& shape, int n);
 Labels CentralViews(const Labels& labels, int n);
 
+// Where those views lie: the block of the central n x n views of a light field of the shape `shape` (same checks).
+ViewBlock CentralViewBlock(const LightFieldShape& shape, int n);
+
 // Views are well lit when their mean weight (a lenslet decode's vignetting) is at least this: beyond it, the rays
 // sample the soft edge of the micro-images, where noise is amplified and the neighbouring micro-image is near.
 // It keeps the central 9x9 of an Illum decode (the next ring's dimmest view: 0.37) and 7x7 of an F01 (its dimmest
