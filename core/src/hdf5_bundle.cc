@@ -403,6 +403,21 @@ void RequireHdf5File(const fs::path& path) {
   if (H5Fis_hdf5(name.c_str()) <= 0) ThrowFileError(name, "not an HDF5 file");
 }
 
+// Opens the HDF5 file `path` read-only, under libhdf5's crash guard, and returns read(file, name): what the library
+// throws becomes a one-line error naming the file.
+template <typename Read>
+auto ReadFromHdf5File(const fs::path& path, Read read) {
+  const std::string name = path.string();
+  RequireHdf5File(path);
+  try {
+    const ForeignCrashGuard guard(name, "libhdf5");
+    const H5::H5File file(name, H5F_ACC_RDONLY);
+    return read(file, name);
+  } catch (const H5::Exception& error) {
+    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -442,11 +457,7 @@ LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& 
 Bundle ReadBundle(const fs::path& path) { return ReadBundle(path, BundleParts{}); }
 
 Bundle ReadBundle(const fs::path& path, const BundleParts& parts) {
-  const std::string name = path.string();
-  RequireHdf5File(path);
-  try {
-    const ForeignCrashGuard guard(name, "libhdf5");
-    const H5::H5File file(name, H5F_ACC_RDONLY);
+  return ReadFromHdf5File(path, [&path, &parts](const H5::H5File& file, const std::string& name) {
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
     const H5::DataSet samples = file.openDataSet("LF");
     const LightFieldShape stored = StoredShape(samples, name);
@@ -474,30 +485,18 @@ Bundle ReadBundle(const fs::path& path, const BundleParts& parts) {
         bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", stored, block, sibling_labels.string());
     }
     return bundle;
-  } catch (const H5::Exception& error) {
-    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
-  }
+  });
 }
 
 LightFieldShape ReadBundleShape(const fs::path& path) {
-  const std::string name = path.string();
-  RequireHdf5File(path);
-  try {
-    const ForeignCrashGuard guard(name, "libhdf5");
-    const H5::H5File file(name, H5F_ACC_RDONLY);
+  return ReadFromHdf5File(path, [](const H5::H5File& file, const std::string& name) {
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
     return StoredShape(file.openDataSet("LF"), name);
-  } catch (const H5::Exception& error) {
-    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
-  }
+  });
 }
 
 Labels ReadLabels(const fs::path& path) {
-  const std::string name = path.string();
-  RequireHdf5File(path);
-  try {
-    const ForeignCrashGuard guard(name, "libhdf5");
-    const H5::H5File file(name, H5F_ACC_RDONLY);
+  return ReadFromHdf5File(path, [&path](const H5::H5File& file, const std::string& name) {
     const char* dataset_name = file.nameExists("labels")      ? "labels"
                                : file.nameExists("GT_LABELS") ? "GT_LABELS"
                                                               : nullptr;
@@ -512,9 +511,7 @@ Labels ReadLabels(const fs::path& path) {
     const LightFieldShape shape{static_cast<int>(dims[1]), static_cast<int>(dims[0]), static_cast<int>(dims[3]),
                                 static_cast<int>(dims[2]), 1};
     return ReadLabelsDataset(file, dataset_name, shape, AllViews(shape), name);
-  } catch (const H5::Exception& error) {
-    ThrowFileError(name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
-  }
+  });
 }
 
 BundleWriteOptions CompactBundleOptions(const LightField& light_field) {
