@@ -60,8 +60,9 @@ struct DecodeOptions {
 // How far below kWellLitWeight (view_crop.h) a view's white-image estimate of its mean weight may read and still be
 // decoded for central_views = 0. Against the decoded means, the estimate (ApproximateViewMeanWeights) reads within
 // 0.006 (simulated Illum) and 0.012 (simulated and real F01) for views above 0.25; only the dim rim's views, which
-// no choice keeps, read up to 0.055 off. The Illum's 11x11 ring reads 0.370 (decoded 0.370), so its 9x9 is sliced;
-// the F01's 9x9 ring reads 0.402 (decoded 0.391), so its whole 9x9 grid is, and the stage keeps 7x7 as before.
+// no choice keeps, read up to 0.055 off. The Illum's 11x11 ring reads 0.370 at its dimmest (decoded 0.370), so its
+// 9x9 is sliced; the F01's 9x9 ring reads below 0.38 at its corners too, so its 7x7 is (the simulated two-horses
+// capture's pipeline: the same disparity.pfm as with the whole grid).
 inline constexpr double kDecodeChoiceMargin = 0.02;
 
 // The decoded 4D grid of a lattice, as LFToolbox sizes it: n = even(ceil(spacing)), views = n - 1 (Illum 15, F01 9),
