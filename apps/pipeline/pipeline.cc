@@ -194,8 +194,8 @@ Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohm
     // A simulated capture's truth is read and compared here, inside the stage: what it costs is reported apart.
     truth = SimulatorGroundTruth(input, bundle.light_field.shape());
     // The decode's sensor-size buffers are free but kept in the heap (apps/lfsp_main.cc): given back first, or the
-    // truth's rows are read beside them (2107 MB with the light field allocated on the main thread, against the
-    // decode's 1986 MB).
+    // truth's rows are read beside them and the peak rises above the decode's (2107 against 1986 MB when all 15x15
+    // Illum views were decoded).
     if (truth) ReturnFreedMemory();
     if (truth) truth_comparison = AttachTruthDisparityAndCompare(*truth, bundle);
     steps["ground_truth"] = step.Lap();
