@@ -217,6 +217,25 @@ class SrgbTable {
   std::array<float, kSize + 1> table_{};
 };
 
+// Where the rays of view (u, v) of the geometry's whole grid meet the sensor, from their lens's centre, in the
+// lattice frame (pixels along and across the lens rows), and whether that point lies inside the micro-lens: the
+// slicing and the estimate of the views' weights must agree on both.
+struct ViewOffset {
+  double along = 0.0;
+  double across = 0.0;
+  bool inside_lens = false;
+};
+
+ViewOffset GridViewOffset(const DecodedGeometry& geometry, const LensletGrid& grid, int u, int v) {
+  const int centre = (geometry.views - 1) / 2;
+  ViewOffset offset;
+  offset.along = (u - centre) * geometry.view_step;
+  offset.across = (v - centre) * geometry.view_step;
+  // Rays beyond the micro-lens radius see the neighbouring micro-image: they get no weight.
+  offset.inside_lens = std::hypot(offset.along, offset.across) < 0.5 * grid.spacing_x;
+  return offset;
+}
+
 }  // namespace
 
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
@@ -224,7 +243,7 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
                        LightField& light_field) {
   // The light field holds the central views x views of the geometry's grid (all of them unless fewer were asked).
   const int views = light_field.shape().nu;
-  const int first = (geometry.views - views) / 2, grid_centre = (geometry.views - 1) / 2;
+  const int first = (geometry.views - views) / 2;
   const int width = geometry.width;
   // Lenses -2 .. columns + 1 of a row, so every output column has its 4 taps.
   const int lens_begin = -2;
@@ -232,8 +251,6 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
   const ColumnTaps taps[2] = {MakeTaps(width, 0, buffer_size), MakeTaps(width, 1, buffer_size)};
   const double c = std::cos(grid.rotation), s = std::sin(grid.rotation);
   const double pitch_x = c * grid.spacing_x, pitch_y = s * grid.spacing_x;
-  // Rays beyond the micro-lens radius see the neighbouring micro-image: they get no weight.
-  const double lens_radius = 0.5 * grid.spacing_x;
   std::array<float, 9> m = colour.matrix;
   for (float& value : m) value *= colour.scale;
   // Per view: the sensor offset of its rays from a lens centre, and whether they stay inside the lens.
@@ -243,11 +260,10 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
   for (int v = 0; v < views; ++v)
     for (int u = 0; u < views; ++u) {
       const auto k = static_cast<std::size_t>(v * views + u);
-      const double along = (first + u - grid_centre) * geometry.view_step;
-      const double across = (first + v - grid_centre) * geometry.view_step;
-      offset_x[k] = c * along - s * across;
-      offset_y[k] = s * along + c * across;
-      inside_lens[k] = std::hypot(along, across) < lens_radius;
+      const ViewOffset offset = GridViewOffset(geometry, grid, first + u, first + v);
+      offset_x[k] = c * offset.along - s * offset.across;
+      offset_y[k] = s * offset.along + c * offset.across;
+      inside_lens[k] = offset.inside_lens;
     }
   const std::size_t lenses = static_cast<std::size_t>(buffer_size);
 #pragma omp parallel
@@ -309,19 +325,18 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
 std::vector<double> ApproximateViewMeanWeights(const cv::Mat& grey_white, const LensletGrid& grid,
                                                const DecodedGeometry& geometry) {
   constexpr int kRowStep = 4;
-  const int views = geometry.views, centre = (views - 1) / 2;
+  const int views = geometry.views;
   std::vector<double> means(static_cast<std::size_t>(views) * static_cast<std::size_t>(views), 0.0);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < views * views; ++k) {
-    const double along = (k % views - centre) * geometry.view_step, across = (k / views - centre) * geometry.view_step;
-    const bool inside_lens = std::hypot(along, across) < 0.5 * grid.spacing_x;
-    if (!inside_lens) continue;  // the slicing gives these rays no weight
+    const ViewOffset offset = GridViewOffset(geometry, grid, k % views, k / views);
+    if (!offset.inside_lens) continue;  // the slicing gives these rays no weight
     double sum = 0.0;
     long long count = 0;
     for (int y = 0; y < geometry.height; y += kRowStep)
       for (int i = 0; i < grid.columns; ++i) {
         double x = 0.0, sy = 0.0;
-        grid.SensorPosition(i + 0.5 * grid.Shift(y), y, along, across, x, sy);
+        grid.SensorPosition(i + 0.5 * grid.Shift(y), y, offset.along, offset.across, x, sy);
         x = std::clamp(x, 0.0, grey_white.cols - 1.0001);
         sy = std::clamp(sy, 0.0, grey_white.rows - 1.0001);
         const int x0 = static_cast<int>(x), y0 = static_cast<int>(sy);
