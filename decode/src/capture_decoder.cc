@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <optional>
+#include <utility>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/memory_usage.h"
@@ -77,7 +78,7 @@ GridEstimate GivenGrid(const std::filesystem::path& grid_file, const RawInput& i
 CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path, const CaptureDecodeOptions& options) {
   const Stopwatch total;
   Stopwatch step;
-  const RawInput input = OpenRawInput(capture_path, options.plain);
+  RawInput input = OpenRawInput(capture_path, options.plain);  // its raw image is handed to the decode
   if (input.white_image)
     throw Error(capture_path.string() +
                 ": this is a white (modulation) image, not a capture; it belongs in a white-image folder");
@@ -155,7 +156,9 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     decode_options.white_balance =
         WhiteBalance{IsPlainRawImagePath(capture_path) ? WhiteBalanceMode::kAuto : WhiteBalanceMode::kCamera};
   decode_options.jpeg_block = input.jpeg_block;
-  result.light_field = DecodeLenslet(input.raw, metadata, *prepared, estimate.grid, decode_options, &report);
+  // Handed over: the capture's and the white image's sensor-size buffers are freed as the decode goes.
+  result.light_field =
+      DecodeLenslet(std::move(input.raw), metadata, std::move(*prepared), estimate.grid, decode_options, &report);
   progress.Tick();
   progress.Finish();
   result.light_field.metadata["decode"]["white_choice"] = white->summary["why"];

@@ -221,10 +221,17 @@ LightFieldShape DecodedShape(int requested, const cv::Mat& grey_white, const Len
   return CentralShape(all, n);
 }
 
-}  // namespace
+// The caller's buffers that the decode may free as soon as it is done with them: both when they were handed over
+// (the consuming DecodeLenslet), neither otherwise. They are the same objects as the decode's `capture` and `white`,
+// which are not read after the point where they are freed.
+struct Consumable {
+  RawImage* capture = nullptr;
+  PreparedWhite* white = nullptr;
+};
 
-LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
-                         const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report) {
+LightField DecodeFromSensor(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
+                            const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report,
+                            Consumable consumable) {
   DecodeReport local_report;
   DecodeReport& out_report = report ? *report : local_report;
   out_report = {};
@@ -257,6 +264,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   cv::Mat bayer = LevelAndDevignette(capture, capture_levels, white.inverse,
                                      options.correct_hot_pixels ? static_cast<float>(options.hot_pixel_margin) : 0.0f,
                                      out_report.hot_pixels_corrected, out_report.clipped_samples);
+  if (consumable.capture) *consumable.capture = RawImage{};
+  // Without clipped samples the highlights step does not run, and nothing reads the white image's inverse again.
+  if (consumable.white && out_report.clipped_samples == 0) consumable.white->inverse.release();
   // What the steps before the decode freed (the white database's reads, the grid fit's images) goes back first.
   ReturnFreedMemory();
   lap("levels_hot_pixels_devignette");
@@ -279,6 +289,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   if (out_report.clipped_samples > 0)
     out_report.highlights_neutralised = NeutraliseClippedHighlights(
         rgb, white.inverse, capture_format.mosaic, options.demosaic, micro_images, balance, kClippedLevel);
+  // The white image's inverse is not read from here on: beside the demosaicked image and the light field it made
+  // the decode's peak (an Illum's 166 MB, issue 46). Without clipped samples it went after the levelling.
+  if (consumable.white) consumable.white->inverse.release();
   colour.matrix = ColourMatrix(capture_metadata, options.colour, balance);
   const float brightest = BrightestWellLit(rgb, white.grey, colour.matrix);
   colour.scale = brightest > 1.0f ? 1.0f / brightest : 1.0f;
@@ -292,6 +305,9 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   LightField light_field(shape, LightField::Unfilled{});
   light_field.EnableWeights(LightField::Unfilled{});
   SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
+  rgb.release();
+  if (consumable.white) consumable.white->grey.release();
+  ReturnFreedMemory();
   lap("slice");
   // The JPEG's block gain first: the lattice gain is measured against a blur across 2 rows, which the block
   // pattern's slow drift would pass into it.
@@ -331,6 +347,18 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
   if (!capture_metadata.camera_model.empty())
     light_field.metadata["decode"]["camera_model"] = capture_metadata.camera_model;
   return light_field;
+}
+
+}  // namespace
+
+LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
+                         const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report) {
+  return DecodeFromSensor(capture, capture_metadata, white, grid, options, report, Consumable{});
+}
+
+LightField DecodeLenslet(RawImage&& capture, const LytroMetadata& capture_metadata, PreparedWhite&& white,
+                         const LensletGrid& grid, const DecodeOptions& options, DecodeReport* report) {
+  return DecodeFromSensor(capture, capture_metadata, white, grid, options, report, Consumable{&capture, &white});
 }
 
 }  // namespace lfsp::decode

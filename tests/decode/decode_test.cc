@@ -10,6 +10,7 @@
 #include <map>
 #include <opencv2/core.hpp>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "lfsp/core/error.h"
@@ -112,6 +113,27 @@ LightField Decode(const Shot& shot, const LensletGrid& grid, DecodeOptions optio
   options.colour = ColourMode::kLinear;
   return DecodeLenslet(ToRawImage(shot.capture), shot.capture_metadata, ToRawImage(shot.white), shot.white_metadata,
                        grid, options, report);
+}
+
+// The decode that consumes its inputs (DecodeLenslet with a RawImage&& and a PreparedWhite&&) frees the capture and
+// the white image's buffers, and decodes the same light field bit for bit as the one that leaves them alone.
+void ExpectConsumingDecodeIsTheSame(const Shot& shot, const LensletGrid& grid, const DecodeOptions& options) {
+  const PreparedWhite prepared =
+      PrepareWhite(ToRawImage(shot.white), shot.white_metadata, options.colour, options.min_white);
+  DecodeReport kept_report, consumed_report;
+  const LightField kept =
+      DecodeLenslet(ToRawImage(shot.capture), shot.capture_metadata, prepared, grid, options, &kept_report);
+  RawImage capture = ToRawImage(shot.capture);
+  PreparedWhite handed = prepared;  // shares the buffers: releasing them here only drops this copy's hold
+  const LightField consumed =
+      DecodeLenslet(std::move(capture), shot.capture_metadata, std::move(handed), grid, options, &consumed_report);
+  EXPECT_TRUE(capture.pixels.empty());  // NOLINT(bugprone-use-after-move): the decode empties what it consumed
+  EXPECT_TRUE(handed.inverse.empty());  // NOLINT(bugprone-use-after-move)
+  EXPECT_TRUE(handed.grey.empty());     // NOLINT(bugprone-use-after-move)
+  EXPECT_EQ(consumed_report.highlights_neutralised, kept_report.highlights_neutralised);
+  ASSERT_EQ(consumed.shape(), kept.shape());
+  EXPECT_EQ(std::memcmp(consumed.data(), kept.data(), kept.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(consumed.weights().data(), kept.weights().data(), kept.weights().size() * sizeof(float)), 0);
 }
 
 // PSNR of the inner views (|u - uc|, |v - vc| <= reach) away from a 2-pixel border, after the one global gain that
@@ -346,6 +368,8 @@ TEST(Decode, ClippedHighlightsDecodeNeutral) {
     EXPECT_GT(report.highlights_neutralised, 10000);
     EXPECT_NEAR(sum[2] / sum[1], 1.0, 0.02);
     EXPECT_NEAR(sum[0] / sum[1], 1.0, 0.02);
+    // Clipped samples keep the white image's inverse alive until the highlights are made neutral.
+    ExpectConsumingDecodeIsTheSame(shot, FitGrid(shot), decode_options);
   }
 }
 
@@ -495,6 +519,12 @@ TEST_F(CropIllumDecode, CentralViewsAreTheFullDecodesCentreBitForBit) {
   DecodeOptions too_many;
   too_many.central_views = full.shape().nu + 2;
   EXPECT_THROW(Decode(*shot_, *grid_, too_many), Error);
+}
+
+TEST_F(CropIllumDecode, ConsumingDecodeFreesItsInputsAndDecodesTheSame) {
+  DecodeOptions options;
+  options.colour = ColourMode::kLinear;
+  ExpectConsumingDecodeIsTheSame(*shot_, *grid_, options);
 }
 
 TEST(Decode, HotPixelsAreCorrected) {

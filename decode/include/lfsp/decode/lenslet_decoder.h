@@ -135,5 +135,11 @@ LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_m
 // was prepared with).
 LightField DecodeLenslet(const RawImage& capture, const LytroMetadata& capture_metadata, const PreparedWhite& white,
                          const LensletGrid& grid, const DecodeOptions& options = {}, DecodeReport* report = nullptr);
+// The same, consuming the capture and the prepared white image: each buffer is freed as soon as the decode is done
+// with it (the capture after levelling; the white image's inverse then too, or after the highlights when samples
+// clipped; its grey version after the slicing), so that none is resident beside the demosaicked image and the light
+// field (an Illum's: 83 MB, 166 MB, 166 MB). The light field is the same bit for bit.
+LightField DecodeLenslet(RawImage&& capture, const LytroMetadata& capture_metadata, PreparedWhite&& white,
+                         const LensletGrid& grid, const DecodeOptions& options = {}, DecodeReport* report = nullptr);
 
 }  // namespace lfsp::decode
