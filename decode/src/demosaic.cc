@@ -192,14 +192,31 @@ inline void EdgePixel(const EdgeWindow& e, int colour, int horizontal_colour, fl
 }
 
 // Pixels whose 5x5 window lies wholly inside one micro-image: under a single lens, and lit by the white image at
-// or above `min_white` everywhere in it.
+// or above `min_white` everywhere in it. Computed by bands of rows (each read with the window's 2 rows beyond it),
+// so the filters' sensor-size temporaries (an Illum's 371 MB) are never held at once beside the demosaic's output.
 cv::Mat InsideMicroImages(const MicroImages& micro_images, float min_white) {
-  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5));
-  cv::Mat darkest, lowest_label, highest_label;
-  cv::erode(micro_images.white_grey, darkest, window);
-  cv::erode(micro_images.lens_labels, lowest_label, window);
-  cv::dilate(micro_images.lens_labels, highest_label, window);
-  return (darkest >= min_white) & (lowest_label == highest_label);
+  constexpr int kBandRows = 256;
+  constexpr int kReach = 2;  // the window's half size
+  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * kReach + 1, 2 * kReach + 1));
+  const int rows = micro_images.white_grey.rows;
+  cv::Mat inside(rows, micro_images.white_grey.cols, CV_8UC1);
+  for (int first = 0; first < rows; first += kBandRows) {
+    const int last = std::min(rows, first + kBandRows);
+    const cv::Range read(std::max(0, first - kReach), std::min(rows, last + kReach));
+    const cv::Range kept(first - read.start, last - read.start);
+    // BORDER_ISOLATED: the band's own edges count as the image's; the rows kept lie kReach inside them.
+    cv::Mat darkest, lowest_label, highest_label;
+    cv::erode(micro_images.white_grey.rowRange(read), darkest, window, cv::Point(-1, -1), 1,
+              cv::BORDER_CONSTANT | cv::BORDER_ISOLATED);
+    cv::erode(micro_images.lens_labels.rowRange(read), lowest_label, window, cv::Point(-1, -1), 1,
+              cv::BORDER_CONSTANT | cv::BORDER_ISOLATED);
+    cv::dilate(micro_images.lens_labels.rowRange(read), highest_label, window, cv::Point(-1, -1), 1,
+               cv::BORDER_CONSTANT | cv::BORDER_ISOLATED);
+    const cv::Mat band =
+        (darkest.rowRange(kept) >= min_white) & (lowest_label.rowRange(kept) == highest_label.rowRange(kept));
+    band.copyTo(inside.rowRange(first, last));
+  }
+  return inside;
 }
 
 cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern, const MicroImages* micro_images) {
