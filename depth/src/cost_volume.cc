@@ -13,6 +13,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/depth/detail_weight.h"
 #include "lfsp/depth/noise_matched_kernel.h"
+#include "lfsp/depth/presmooth.h"
 
 namespace lfsp::depth {
 namespace {
@@ -209,8 +210,9 @@ std::vector<float> NoiseMatchedCentre(const FeatureImages& features, const Light
   return blurred;
 }
 
-// Every view's features: its RGB and, when `with_detail`, its detail image: the high-pass grey image (mean of RGB;
-// the colour of faint texture adds little, measured), optionally divided by its local RMS.
+// Every view's features: its RGB (presmoothed when CostOptions::presmooth_sigma asks) and, when `with_detail`, its
+// detail image: the high-pass grey image (mean of RGB; the colour of faint texture adds little, measured), optionally
+// divided by its local RMS.
 FeatureImages MakeFeatureImages(const LightField& light_field, const CostOptions& options, bool with_detail) {
   const LightFieldShape& shape = light_field.shape();
   FeatureImages features;
@@ -221,12 +223,21 @@ FeatureImages MakeFeatureImages(const LightField& light_field, const CostOptions
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < views; ++i) {
     const ViewIndex view = ViewFromCameraNumber(i, shape.nu);
-    const cv::Mat rgb = light_field.View(view);
     cv::Mat target(shape.height, shape.width, CV_32FC(features.channels),
                    features.samples.data() + static_cast<std::size_t>(i) * view_samples);
+    const bool presmooth = options.presmooth_sigma > 0.0;
     if (!with_detail) {
-      rgb.copyTo(target);
+      if (presmooth)
+        PresmoothView(light_field.View(view), options.presmooth_sigma, target);
+      else
+        light_field.View(view).copyTo(target);
       continue;
+    }
+    cv::Mat rgb = light_field.View(view);
+    if (presmooth) {
+      cv::Mat smoothed;
+      PresmoothView(rgb, options.presmooth_sigma, smoothed);
+      rgb = smoothed;
     }
     cv::Mat detail = DetailHighPass(rgb, options.detail_sigma);
     if (options.detail_normalise_sigma > 0.0f) {

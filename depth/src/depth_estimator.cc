@@ -79,18 +79,21 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   result.presmooth_sigma = options.presmooth_sigma < 0.0f
                                ? AutomaticPresmoothSigma(light_field, result.noise_sigma_lower_quartile)
                                : options.presmooth_sigma;
-  std::optional<LightField> smoothed;
-  if (result.presmooth_sigma > 0.0) smoothed = Presmoothed(light_field, result.presmooth_sigma);
-  const LightField& views = smoothed ? *smoothed : light_field;
-  const cv::Mat centre = views.View(views.shape().Centre());
+  // The views are presmoothed as the cost volume's features are made; the steps that read the centre view read it
+  // smoothed alike.
+  cv::Mat centre;  // not a header of raw_centre: the smoothing would write into the light field
+  if (result.presmooth_sigma > 0.0)
+    PresmoothView(raw_centre, result.presmooth_sigma, centre);
+  else
+    centre = raw_centre;
   lap("presmooth");
 
   std::optional<OcclusionMap> occlusion;
   if (options.occlusion_handling) {
     OcclusionOptions occlusion_options = options.occlusion;
     if (occlusion_options.radius <= 0.0) {
-      occlusion_options.radius = AutomaticOcclusionRadius(views.shape().nu, views.shape().nv, result.range.min,
-                                                          result.range.max, result.presmooth_sigma);
+      occlusion_options.radius = AutomaticOcclusionRadius(light_field.shape().nu, light_field.shape().nv,
+                                                          result.range.min, result.range.max, result.presmooth_sigma);
     }
     result.occlusion_radius = occlusion_options.radius;
     occlusion = DetectOcclusionEdges(centre, occlusion_options);
@@ -98,6 +101,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   }
   lap("occlusion_edges");
   CostOptions cost_options = options.cost;
+  cost_options.presmooth_sigma = result.presmooth_sigma;
   if (cost_options.excluded_ring < 0) cost_options.excluded_ring = ExcludedRingFor(light_field);
   result.excluded_ring = cost_options.excluded_ring;
   if (cost_options.sampler == Sampler::kAutomatic)
@@ -112,7 +116,7 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   result.sgm = PenaltiesForCost(options.sgm, cost_options);
   OcclusionAlternatives alternatives;
   const bool check_thin_structures = occlusion && ChecksThinStructures(options);
-  CostVolume cost = BuildCostVolume(views, disparities, cost_options, occlusion ? &*occlusion : nullptr,
+  CostVolume cost = BuildCostVolume(light_field, disparities, cost_options, occlusion ? &*occlusion : nullptr,
                                     check_thin_structures ? &alternatives : nullptr);
   lap("cost_volume");
   if (check_thin_structures) {

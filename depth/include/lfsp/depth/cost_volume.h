@@ -104,6 +104,9 @@ struct CostOptions {
   // towards 0 (full-size F01 strips with sensor noise read 0.72x their disparity).
   int excluded_ring = -1;
   Sampler sampler = Sampler::kAutomatic;  // BuildCostVolume alone reads automatic as bilinear
+  // Gaussian smoothing of every view before matching, pixels (PresmoothView); 0 = none. EstimateDepth sets it from
+  // DepthOptions::presmooth_sigma after its automatic choice.
+  double presmooth_sigma = 0.0;
   int tile_rows = 4;  // rows per work item: each view's rows of one tile stay in cache across all labels
 };
 

@@ -48,8 +48,9 @@ double AutomaticPresmoothSigma(const LightField& light_field, double noise_sigma
 // light fields.
 int ExcludedRingFor(const LightField& light_field);
 
-// A copy of the light field with every view Gaussian-smoothed (sigma in pixels), in parallel over views; transfer
-// and metadata are kept, per-ray weights are not.
-LightField Presmoothed(const LightField& light_field, double sigma);
+// One view Gaussian-smoothed (sigma in pixels, reflected borders) into `out`: what every view is matched as
+// (CostOptions::presmooth_sigma, applied as the cost volume's features are made, so that no smoothed copy of the
+// whole light field is held) and what the steps that read the centre view see.
+void PresmoothView(const cv::Mat& view, double sigma, cv::Mat& out);
 
 }  // namespace lfsp::depth
