@@ -243,7 +243,7 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
                        LightField& light_field) {
   // The light field holds the central views x views of the geometry's grid (all of them unless fewer were asked).
   const int views = light_field.shape().nu;
-  const int first = (geometry.views - views) / 2;
+  const int first_view = (geometry.views - views) / 2;
   const int width = geometry.width;
   // Lenses -2 .. columns + 1 of a row, so every output column has its 4 taps.
   const int lens_begin = -2;
@@ -260,7 +260,7 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
   for (int v = 0; v < views; ++v)
     for (int u = 0; u < views; ++u) {
       const auto k = static_cast<std::size_t>(v * views + u);
-      const ViewOffset offset = GridViewOffset(geometry, grid, first + u, first + v);
+      const ViewOffset offset = GridViewOffset(geometry, grid, first_view + u, first_view + v);
       offset_x[k] = c * offset.along - s * offset.across;
       offset_y[k] = s * offset.along + c * offset.across;
       inside_lens[k] = offset.inside_lens;
