@@ -1,8 +1,10 @@
 #include "lfsp/core/memory_usage.h"
 
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #ifdef __GLIBC__  // defined by the headers above
 #include <malloc.h>
@@ -29,6 +31,18 @@ double PeakResidentMegabytes() {
 void ReturnFreedMemory() {
 #ifdef __GLIBC__
   malloc_trim(0);
+#endif
+}
+
+void DiscardPages(void* begin, void* end) {
+#ifdef __linux__
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(end) / page * page;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+#else
+  (void)begin;
+  (void)end;
 #endif
 }
 

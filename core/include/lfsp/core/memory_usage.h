@@ -14,4 +14,10 @@ double PeakResidentMegabytes();
 // freed sensor-size buffers calls this before the next large allocation (issue 46; docs/DESIGN.md, "Peak memory").
 void ReturnFreedMemory();
 
+// Gives back to the system the pages that lie wholly within [begin, end) of a live allocation whose contents the
+// caller will not read again: they read as zero afterwards, and the allocation is still freed as usual. A step that
+// consumes a large input front to back calls this behind itself, so its output fills up as the input empties
+// (madvise MADV_DONTNEED on Linux; nothing elsewhere).
+void DiscardPages(void* begin, void* end);
+
 }  // namespace lfsp
