@@ -304,7 +304,11 @@ LightField DecodeFromSensor(const RawImage& capture, const LytroMetadata& captur
   // before the demosaic: beside its sensor-size buffers the light field made the decode's peak (issue 46).
   LightField light_field(shape, LightField::Unfilled{});
   light_field.EnableWeights(LightField::Unfilled{});
-  SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field);
+  // The slicing is the last to read the demosaicked image (and, when it was handed over, the white image's grey
+  // version): their rows go back as it passes them, so the light field fills up while they empty.
+  std::vector<cv::Mat*> read_last = {&rgb};
+  if (consumable.white) read_last.push_back(&consumable.white->grey);
+  SliceLensletImage(rgb, white.grey, lens_labels, grid, geometry, colour, light_field, read_last);
   rgb.release();
   if (consumable.white) consumable.white->grey.release();
   ReturnFreedMemory();

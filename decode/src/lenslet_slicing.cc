@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <utility>
 #include <vector>
 
+#include "lfsp/core/memory_usage.h"
 #include "lfsp/core/srgb.h"
 
 namespace lfsp::decode {
@@ -236,11 +240,48 @@ ViewOffset GridViewOffset(const DecodedGeometry& geometry, const LensletGrid& gr
   return offset;
 }
 
+// Gives back the sensor rows behind the slicing. Lens rows finish out of order across the threads; the rows above
+// the first lens row not yet done, less the reach of its lookups, are read by no lens row still to come.
+class SensorRowsBehind {
+ public:
+  // `first_row_read(j)`: the first sensor row that lens row j, or any row after it, reads.
+  SensorRowsBehind(const std::vector<cv::Mat*>& images, int lens_rows, std::function<int(int)> first_row_read)
+      : images_(images), done_(static_cast<std::size_t>(lens_rows), 0), first_row_read_(std::move(first_row_read)) {}
+
+  void Done(int lens_row) {
+    if (images_.empty()) return;
+#pragma omp critical(lfsp_slice_rows_behind)
+    {
+      const int lens_rows = static_cast<int>(done_.size());
+      done_[static_cast<std::size_t>(lens_row)] = 1;
+      while (next_ < lens_rows && done_[static_cast<std::size_t>(next_)]) ++next_;
+      const int until = next_ < lens_rows ? first_row_read_(next_) : std::numeric_limits<int>::max();
+      if (until > discarded_) {
+        for (cv::Mat* image : images_) DiscardRows(*image, discarded_, until);
+        discarded_ = until;
+      }
+    }
+  }
+
+ private:
+  static void DiscardRows(cv::Mat& image, int from, int to) {
+    to = std::min(to, image.rows);
+    if (to <= from || !image.isContinuous()) return;
+    DiscardPages(image.ptr(from), image.data + static_cast<std::size_t>(to) * image.step[0]);
+  }
+
+  std::vector<cv::Mat*> images_;
+  std::vector<char> done_;
+  std::function<int(int)> first_row_read_;
+  int next_ = 0;       // the first lens row not yet done
+  int discarded_ = 0;  // sensor rows [0, discarded_) are given back
+};
+
 }  // namespace
 
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
                        const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
-                       LightField& light_field) {
+                       LightField& light_field, const std::vector<cv::Mat*>& discard_behind) {
   // The light field holds the central views x views of the geometry's grid (all of them unless fewer were asked).
   const int views = light_field.shape().nu;
   const int first_view = (geometry.views - views) / 2;
@@ -266,6 +307,22 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
       inside_lens[k] = offset.inside_lens;
     }
   const std::size_t lenses = static_cast<std::size_t>(buffer_size);
+  // The first sensor row lens row j reads: its highest lens centre (the rotation tilts the row), moved by the views'
+  // most negative offset, less the taps' reach (SampleBoth's 2 x 2, and the pixel above it that Taps may extrapolate
+  // from) and a row of margin. Later lens rows lie lower.
+  double lowest_offset_y = 0.0;
+  for (int k = 0; k < view_count; ++k)
+    if (inside_lens[static_cast<std::size_t>(k)])
+      lowest_offset_y = std::min(lowest_offset_y, offset_y[static_cast<std::size_t>(k)]);
+  const auto first_row_read = [&](int y) {
+    double x_first = 0.0, y_first = 0.0, x_last = 0.0, y_last = 0.0;
+    const double start = lens_begin + 0.5 * grid.Shift(y);
+    grid.SensorPosition(start, y, 0.0, 0.0, x_first, y_first);
+    grid.SensorPosition(start + static_cast<double>(lenses - 1), y, 0.0, 0.0, x_last, y_last);
+    constexpr int kTapReach = 2;
+    return static_cast<int>(std::floor(std::min(y_first, y_last) + lowest_offset_y)) - kTapReach;
+  };
+  SensorRowsBehind behind(discard_behind, geometry.height, first_row_read);
 #pragma omp parallel
   {
     // Every view's sample of every lens of one row: [view][lens][rgb] and [view][lens].
@@ -318,6 +375,7 @@ void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::
           weight_out[x] = std::clamp(w[0] * q[0] + w[1] * q[1] + w[2] * q[2] + w[3] * q[3], 0.0f, 1.0f);
         }
       }
+      behind.Done(y);
     }
   }
 }

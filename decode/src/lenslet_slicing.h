@@ -26,9 +26,12 @@ struct RayColour {
 // (demosaicked, devignetted), `grey_white` CV_32FC1, both sensor-sized. Parallel over lens rows, which keeps each
 // thread's reads within a band of sensor rows.
 // When `light_field` holds fewer views than the geometry (N x N of geometry.views^2), they are the central N x N.
+// `discard_behind`: sensor-size images (among `rgb` and `grey_white`) the caller will not read again. As the slicing
+// moves down the sensor, the pages of the rows that no lens row still to come reads are given back (DiscardPages),
+// so the light field fills up while they empty (issue 46); those rows read as zero afterwards.
 void SliceLensletImage(const cv::Mat& rgb, const cv::Mat& grey_white, const cv::Mat& lens_labels,
                        const LensletGrid& grid, const DecodedGeometry& geometry, const RayColour& colour,
-                       LightField& light_field);
+                       LightField& light_field, const std::vector<cv::Mat*>& discard_behind = {});
 
 // Every view's mean weight as the slicing would give it, estimated from the white image alone (bilinear at each
 // lens of every fourth lens row, without the cubic along the rows or the taps under other lenses): a few
