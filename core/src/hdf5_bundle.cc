@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "lfsp/core/atomic_file.h"
@@ -366,14 +367,6 @@ std::optional<DisparityMap> ReadOldHciDisparity(const H5::H5File& file, const Li
   return disparity;
 }
 
-template <typename T>
-std::vector<T> Quantise(const float* values, std::size_t count, float scale) {
-  std::vector<T> out(count);
-#pragma omp parallel for
-  for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<T>(SampleLevel(values[i], scale));
-  return out;
-}
-
 // HDF5 stamps objects with their creation time by default; without the stamps the same content gives the same
 // bytes, so regenerated samples and outputs are byte-identical.
 H5::DSetCreatPropList Untimed() {
@@ -549,32 +542,51 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
     const H5::DataSpace lf_space(5, lf_dims.data());
     const H5::DSetCreatPropList lf_properties = ChunkedPerView(lf_dims, options.compression_level);
     const std::size_t views = static_cast<std::size_t>(shape.nu) * static_cast<std::size_t>(shape.nv);
-    // One view per chunk: compressed in parallel when compressing (WriteViewChunks), else written in one call.
-    auto write = [&](H5::DataSet& dataset, const void* values, std::size_t element_size, const H5::PredType& memory,
-                     std::size_t chunk_elements, int rank) {
-      if (options.compression_level > 0)
-        WriteViewChunks(dataset.getId(), values, element_size, views, shape.nu, chunk_elements, rank,
+    // `views` x `chunk_elements` values, stored as Stored (each through `convert`), one view per chunk. Compressed:
+    // a batch of views at a time, converted as they are compressed in parallel (WriteViewChunks), so no converted
+    // copy of the whole is held (a full Illum decode's uint16 samples: 363 MB). Uncompressed: in one call.
+    auto write = [&]<typename Stored, typename Value, typename Convert>(
+                     H5::DataSet& dataset, const Value* values, const H5::PredType& memory, std::size_t chunk_elements,
+                     int rank, Convert convert) {
+      if (options.compression_level > 0) {
+        const auto source = [&](std::size_t view, std::uint8_t* chunk) {
+          const Value* in = values + view * chunk_elements;
+          for (std::size_t i = 0; i < chunk_elements; ++i) {
+            const Stored stored = convert(in[i]);
+            std::memcpy(chunk + i * sizeof(Stored), &stored, sizeof(Stored));
+          }
+        };
+        WriteViewChunks(dataset.getId(), source, sizeof(Stored), views, shape.nu, chunk_elements, rank,
                         std::min(options.compression_level, 9), name);
-      else
+      } else if constexpr (std::is_same_v<Stored, Value>) {
         dataset.write(values, memory);
+      } else {
+        std::vector<Stored> converted(views * chunk_elements);
+#pragma omp parallel for
+        for (std::size_t i = 0; i < converted.size(); ++i) converted[i] = convert(values[i]);
+        dataset.write(converted.data(), memory);
+      }
     };
+    const auto as_is = [](auto value) { return value; };
+    const auto level16 = [](float value) { return static_cast<std::uint16_t>(SampleLevel(value, 65535.0f)); };
+    const auto level8 = [](float value) { return static_cast<std::uint8_t>(SampleLevel(value, 255.0f)); };
     const std::size_t view_samples = shape.ViewSamples();
     switch (options.storage) {
       case SampleStorage::kFloat32: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::IEEE_F32LE, lf_space, lf_properties);
-        write(dataset, light_field.data(), sizeof(float), H5::PredType::NATIVE_FLOAT, view_samples, 5);
+        write.operator()<float>(dataset, light_field.data(), H5::PredType::NATIVE_FLOAT, view_samples, 5, as_is);
         break;
       }
       case SampleStorage::kUint16: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U16LE, lf_space, lf_properties);
-        const auto quantised = Quantise<std::uint16_t>(light_field.data(), light_field.size(), 65535.0f);
-        write(dataset, quantised.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, view_samples, 5);
+        write.operator()<std::uint16_t>(dataset, light_field.data(), H5::PredType::NATIVE_UINT16, view_samples, 5,
+                                        level16);
         break;
       }
       case SampleStorage::kUint8: {
         H5::DataSet dataset = file.createDataSet("LF", H5::PredType::STD_U8LE, lf_space, lf_properties);
-        const auto quantised = Quantise<std::uint8_t>(light_field.data(), light_field.size(), 255.0f);
-        write(dataset, quantised.data(), sizeof(std::uint8_t), H5::PredType::NATIVE_UINT8, view_samples, 5);
+        write.operator()<std::uint8_t>(dataset, light_field.data(), H5::PredType::NATIVE_UINT8, view_samples, 5,
+                                       level8);
         break;
       }
     }
@@ -592,12 +604,11 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
           file.createDataSet("weights", sixteen ? H5::PredType::STD_U16LE : H5::PredType::IEEE_F32LE,
                              H5::DataSpace(4, ray_dims.data()), ChunkedPerView(ray_dims, options.compression_level));
       const Array4D<float>& weights = light_field.weights();
-      if (sixteen) {
-        const auto quantised = Quantise<std::uint16_t>(weights.data(), weights.size(), 65535.0f);
-        write(dataset, quantised.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4);
-      } else {
-        write(dataset, weights.data(), sizeof(float), H5::PredType::NATIVE_FLOAT, shape.ViewPixels(), 4);
-      }
+      if (sixteen)
+        write.operator()<std::uint16_t>(dataset, weights.data(), H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4,
+                                        level16);
+      else
+        write.operator()<float>(dataset, weights.data(), H5::PredType::NATIVE_FLOAT, shape.ViewPixels(), 4, as_is);
     }
     if (bundle.disparity) {
       const DisparityMap& disparity = *bundle.disparity;
@@ -616,22 +627,21 @@ void WriteBundle(const Bundle& bundle, const fs::path& path, const BundleWriteOp
       const auto [lowest, highest] =
           std::minmax_element(bundle.labels->data(), bundle.labels->data() + bundle.labels->size());
       const std::int32_t* labels = bundle.labels->data();
-      const std::size_t count = bundle.labels->size();
       const bool unsigned16 = *lowest >= 0 && *highest <= 65535;
       const bool signed16 = !unsigned16 && *lowest >= -32768 && *highest <= 32767;
       const H5::PredType& stored =
           unsigned16 ? H5::PredType::STD_U16LE : (signed16 ? H5::PredType::STD_I16LE : H5::PredType::STD_I32LE);
       H5::DataSet dataset = file.createDataSet("labels", stored, H5::DataSpace(4, ray_dims.data()),
                                                ChunkedPerView(ray_dims, options.compression_level));
-      if (options.compression_level > 0 && unsigned16) {
-        const std::vector<std::uint16_t> narrow(labels, labels + count);
-        write(dataset, narrow.data(), sizeof(std::uint16_t), H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4);
-      } else if (options.compression_level > 0 && signed16) {
-        const std::vector<std::int16_t> narrow(labels, labels + count);
-        write(dataset, narrow.data(), sizeof(std::int16_t), H5::PredType::NATIVE_INT16, shape.ViewPixels(), 4);
-      } else {
-        write(dataset, labels, sizeof(std::int32_t), H5::PredType::NATIVE_INT32, shape.ViewPixels(), 4);
-      }
+      const auto narrow16 = [](std::int32_t label) { return static_cast<std::uint16_t>(label); };
+      const auto signed_narrow16 = [](std::int32_t label) { return static_cast<std::int16_t>(label); };
+      if (options.compression_level > 0 && unsigned16)
+        write.operator()<std::uint16_t>(dataset, labels, H5::PredType::NATIVE_UINT16, shape.ViewPixels(), 4, narrow16);
+      else if (options.compression_level > 0 && signed16)
+        write.operator()<std::int16_t>(dataset, labels, H5::PredType::NATIVE_INT16, shape.ViewPixels(), 4,
+                                       signed_narrow16);
+      else
+        write.operator()<std::int32_t>(dataset, labels, H5::PredType::NATIVE_INT32, shape.ViewPixels(), 4, as_is);
     }
     file.close();
   } catch (const H5::Exception& error) {

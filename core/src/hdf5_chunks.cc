@@ -213,9 +213,8 @@ bool ReadViewChunks(hid_t dataset, hid_t memory_type, void* destination, std::si
   return true;
 }
 
-void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, std::size_t views, int nu,
+void WriteViewChunks(hid_t dataset, const ViewChunkSource& source, std::size_t element_size, std::size_t views, int nu,
                      std::size_t chunk_elements, int rank, int level, const std::string& name) {
-  const auto* bytes = static_cast<const std::uint8_t*>(data);
   const std::size_t chunk_bytes = chunk_elements * element_size;
   // Compressed in parallel a batch at a time (bounded memory), written in order by one thread (HDF5 is not
   // thread-safe).
@@ -225,7 +224,9 @@ void WriteViewChunks(hid_t dataset, const void* data, std::size_t element_size, 
     const std::size_t count = std::min(batch, views - first);
     ParallelFor(static_cast<int>(count), [&](int k) {
       const std::size_t view = first + static_cast<std::size_t>(k);
-      const std::vector<std::uint8_t> shuffled = Shuffled(bytes + view * chunk_bytes, chunk_elements, element_size);
+      std::vector<std::uint8_t> chunk(chunk_bytes);
+      source(view, chunk.data());
+      const std::vector<std::uint8_t> shuffled = Shuffled(chunk.data(), chunk_elements, element_size);
       if (!DeflateChunk(shuffled, element_size, level, compressed[static_cast<std::size_t>(k)]))
         ThrowFileError(name, "compressing view " + std::to_string(view) + " failed");
     });
