@@ -19,6 +19,10 @@ void AddViewsOption(CLI::App* command, int& views) {
 nlohmann::json SelectViews(Bundle& bundle, int requested, const std::string& source) {
   const ViewChoice choice = ChooseViews(bundle.light_field, requested);
   KeepCentralViews(bundle.light_field, bundle.labels, choice.n);
+  return ViewChoiceSummary(choice, source);
+}
+
+nlohmann::json ViewChoiceSummary(const ViewChoice& choice, const std::string& source) {
   spdlog::info("{}: views: {}", source, choice.reason);
   return {
       {"n", choice.n}, {"of", choice.available}, {"least_mean_weight", choice.least_weight}, {"reason", choice.reason}};

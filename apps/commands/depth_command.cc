@@ -32,9 +32,10 @@ struct DepthCommandOptions {
 void RunDepth(const DepthCommandOptions& options) {
   const depth::DepthOptions method = ToDepthOptions(options.method);
   const Stopwatch stopwatch;
-  Bundle bundle = LoadInput(options.input);
+  nlohmann::json views;
+  Bundle bundle = LoadSelectedViews(options.input, options.views, views);
   nlohmann::ordered_json summary = {{"command", "depth"}, {"input", options.input}};
-  summary["views"] = SelectViews(bundle, options.views, options.input);
+  summary["views"] = views;
   summary["load_seconds"] = stopwatch.Seconds();
   spdlog::info("{}: {}", options.input, ToString(bundle.light_field.shape()));
   stages::RunDepthStage(bundle, method, options.output, std::move(summary));

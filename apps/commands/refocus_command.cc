@@ -84,9 +84,10 @@ void RunRefocus(const RefocusCommandOptions& options) {
   stage.bit_depth = options.bit_depth;
 
   const Stopwatch stopwatch;
-  Bundle bundle = LoadInput(options.input);
+  nlohmann::json views;
+  Bundle bundle = LoadSelectedViews(options.input, options.views, views);
   nlohmann::ordered_json summary = {{"command", "refocus"}, {"input", options.input}};
-  summary["views"] = SelectViews(bundle, options.views, options.input);
+  summary["views"] = views;
   const LightField& light_field = bundle.light_field;
   summary["light_field"] = {{"shape", ToString(light_field.shape())},
                             {"transfer", ToString(light_field.transfer)},

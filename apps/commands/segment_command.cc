@@ -37,9 +37,10 @@ struct SegmentCommandOptions {
 
 void RunSegment(const SegmentCommandOptions& options) {
   const Stopwatch stopwatch;
-  Bundle bundle = LoadInput(options.input);
+  nlohmann::json views;
+  Bundle bundle = LoadSelectedViews(options.input, options.views, views);
   nlohmann::ordered_json summary = {{"command", "segment"}, {"input", options.input}};
-  summary["views"] = SelectViews(bundle, options.views, options.input);
+  summary["views"] = views;
   DisparityMap disparity;
   std::string disparity_source;
   if (!options.disparity.empty()) {

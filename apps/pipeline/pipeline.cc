@@ -204,12 +204,15 @@ Bundle LoadOrDecode(const fs::path& input, const PipelineOptions& options, nlohm
     if (truth) truth_comparison = AttachTruthDisparityAndCompare(*truth, bundle);
     steps["ground_truth"] = step.Lap();
   } else {
-    bundle = cli::LoadInput(input);
+    // Only the views the stages keep are read (an .h5 bundle of 15x15 views is never whole in memory).
+    nlohmann::json views;
+    bundle = cli::LoadSelectedViews(input, options.views, views);
+    summary["views"] = views;
     RoundToStoredPrecision(bundle.light_field, CompactBundleOptions(bundle.light_field).storage);
     steps["load"] = step.Lap();
   }
   // The light field is stored once, in segmentation.h5, after the views to process are chosen.
-  summary["views"] = cli::SelectViews(bundle, options.views, input.string());
+  if (raw) summary["views"] = cli::SelectViews(bundle, options.views, input.string());
   steps["select_views"] = step.Lap();
   summary["step_seconds"][raw ? "decode" : "load"] = steps;
   summary["light_field"] = ToString(bundle.light_field.shape());

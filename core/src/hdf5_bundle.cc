@@ -20,6 +20,7 @@
 #include "lfsp/core/input_limits.h"
 #include "lfsp/core/sample_levels.h"
 #include "lfsp/core/untrusted_json.h"
+#include "lfsp/core/view_crop.h"
 
 namespace lfsp {
 namespace fs = std::filesystem;
@@ -485,6 +486,29 @@ LightFieldShape ReadBundleShape(const fs::path& path) {
   return ReadFromHdf5File(path, [](const H5::H5File& file, const std::string& name) {
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
     return StoredShape(file.openDataSet("LF"), name);
+  });
+}
+
+std::vector<double> ReadViewMeanWeights(const fs::path& path) {
+  return ReadFromHdf5File(path, [](const H5::H5File& file, const std::string& name) {
+    if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
+    const LightFieldShape stored = StoredShape(file.openDataSet("LF"), name);
+    std::vector<double> means;
+    if (!file.nameExists("weights")) return means;
+    const H5::DataSet dataset = file.openDataSet("weights");
+    const std::vector<hsize_t> dims = Dimensions(dataset);
+    if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
+      ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
+    CheckSpatialMatch(dims, stored, name + ": dataset weights");
+    const std::size_t view_pixels = stored.ViewPixels();
+    std::vector<float> row(static_cast<std::size_t>(stored.nu) * view_pixels);
+    for (int v = 0; v < stored.nv; ++v) {
+      const ViewBlock block{{0, v}, stored.nu, 1};
+      ReadSamplesAsFloat(dataset, row.data(), SelectionOf(dataset, block, stored.nu), name + ": weights");
+      for (int u = 0; u < stored.nu; ++u)
+        means.push_back(MeanOfWeights(row.data() + static_cast<std::size_t>(u) * view_pixels, view_pixels));
+    }
+    return means;
   });
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 #include "lfsp/core/atomic_file.h"
 #include "lfsp/core/error.h"
@@ -114,6 +116,28 @@ Bundle LoadLightField(const fs::path& path, const LoadOptions& options) {
   RequireFiniteSamples(bundle.light_field, path.string());
   RequireUsableDisparityRange(bundle.light_field.metadata, path.string());
   return bundle;
+}
+
+LoadedViews LoadCentralViews(const fs::path& path, int requested, const LoadOptions& options) {
+  LoadedViews loaded;
+  if (DetectLightFieldFormat(path) != LightFieldFormat::kHdf5Bundle) {
+    loaded.bundle = LoadLightField(path, options);
+    loaded.choice = ChooseViews(loaded.bundle.light_field, requested);
+    KeepCentralViews(loaded.bundle.light_field, loaded.bundle.labels, loaded.choice.n);
+    return loaded;
+  }
+  const LightFieldShape shape = ReadBundleShape(path);
+  const std::vector<double> means = ReadViewMeanWeights(path);
+  std::function<double(ViewIndex)> mean_weight;
+  if (!means.empty())
+    mean_weight = [&](ViewIndex view) { return means[static_cast<std::size_t>(view.v * shape.nu + view.u)]; };
+  loaded.choice = ChooseViews(shape, mean_weight, requested);
+  BundleParts parts;
+  parts.views = CentralViewBlock(shape, loaded.choice.n);
+  loaded.bundle = ReadBundle(path, parts);
+  RequireFiniteSamples(loaded.bundle.light_field, path.string());
+  RequireUsableDisparityRange(loaded.bundle.light_field.metadata, path.string());
+  return loaded;
 }
 
 void SaveLightField(const Bundle& bundle, const fs::path& path, int bit_depth, const std::string& view_extension) {

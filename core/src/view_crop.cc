@@ -58,12 +58,14 @@ Labels CentralViews(const Labels& labels, int n) {
   return out;
 }
 
-double MeanViewWeight(const LightField& light_field, ViewIndex view) {
-  const float* w = light_field.weights().ViewData(view);
-  const std::size_t count = light_field.shape().ViewPixels();
+double MeanOfWeights(const float* weights, std::size_t count) {
   double sum = 0.0;
-  for (std::size_t i = 0; i < count; ++i) sum += w[i];
+  for (std::size_t i = 0; i < count; ++i) sum += weights[i];
   return sum / static_cast<double>(count);
+}
+
+double MeanViewWeight(const LightField& light_field, ViewIndex view) {
+  return MeanOfWeights(light_field.weights().ViewData(view), light_field.shape().ViewPixels());
 }
 
 namespace {
@@ -95,15 +97,21 @@ int WellLitCentralSize(const LightFieldShape& shape, const std::function<double(
 }
 
 ViewChoice ChooseViews(const LightField& light_field, int requested) {
-  const LightFieldShape& shape = light_field.shape();
-  const auto mean_weight = [&light_field](ViewIndex view) { return MeanViewWeight(light_field, view); };
+  std::function<double(ViewIndex)> mean_weight;
+  if (light_field.HasWeights())
+    mean_weight = [&light_field](ViewIndex view) { return MeanViewWeight(light_field, view); };
+  return ChooseViews(light_field.shape(), mean_weight, requested);
+}
+
+ViewChoice ChooseViews(const LightFieldShape& shape, const std::function<double(ViewIndex)>& mean_weight,
+                       int requested) {
   ViewChoice choice;
   choice.available = std::min(shape.nu, shape.nv);
   if (requested > 0) {
     CentralShape(shape, requested);  // throws with the reason if it cannot be taken
     choice.n = requested;
     choice.reason = OptionName("views") + " " + std::to_string(requested);
-  } else if (!light_field.HasWeights()) {
+  } else if (!mean_weight) {
     choice.n = choice.available;
     choice.reason = "all views (the light field has no weights)";
   } else {
@@ -113,7 +121,7 @@ ViewChoice ChooseViews(const LightField& light_field, int requested) {
                     ": every view's mean weight >= " + std::to_string(kWellLitWeight).substr(0, 3) + " (" +
                     OptionName("views") + " to override)";
   }
-  if (light_field.HasWeights()) choice.least_weight = LeastWeight(shape, mean_weight, 0, (choice.n - 1) / 2);
+  if (mean_weight) choice.least_weight = LeastWeight(shape, mean_weight, 0, (choice.n - 1) / 2);
   return choice;
 }
 

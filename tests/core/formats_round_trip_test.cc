@@ -421,7 +421,9 @@ TEST(Hdf5Bundle, PartsOfABundleAreThoseViewsOfTheWhole) {
         EXPECT_EQ(std::memcmp(part.labels->data(), labels.data(), labels.size() * sizeof(std::int32_t)), 0) << path;
       }
       ASSERT_EQ(part.disparity.has_value(), whole.disparity.has_value()) << path;
-      if (whole.disparity) EXPECT_EQ(part.disparity->at(47, 63), whole.disparity->at(47, 63));
+      if (whole.disparity) {
+        EXPECT_EQ(part.disparity->at(47, 63), whole.disparity->at(47, 63));
+      }
     }
     EXPECT_EQ(ReadBundleShape(path), shape);
   }

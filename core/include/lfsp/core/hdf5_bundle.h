@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "lfsp/core/light_field.h"
 
@@ -56,6 +57,11 @@ Bundle ReadBundle(const std::filesystem::path& path, const BundleParts& parts);
 
 // The shape of a bundle's light field (its dataset LF), without reading it.
 LightFieldShape ReadBundleShape(const std::filesystem::path& path);
+
+// The mean weight of every view of a bundle (MeanOfWeights; camera order, v * nu + u), from its weights read a row of
+// views at a time, without its samples: what choosing the views to process needs (LoadCentralViews). Empty when the
+// bundle has no weights.
+std::vector<double> ReadViewMeanWeights(const std::filesystem::path& path);
 
 // Reads only the per-ray labels of an HDF5 file, without its light field: dataset `labels` (an lfsp bundle, as
 // `lfsp segment` writes it) or `GT_LABELS` (the old HCI layout), nv x nu x H x W of any integer type. Throws

@@ -6,6 +6,7 @@
 #include "lfsp/core/eslf.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/metadata.h"
+#include "lfsp/core/view_crop.h"
 
 namespace lfsp {
 
@@ -35,6 +36,17 @@ struct LoadOptions {
   std::string views_pattern;  // views folders: file naming such as '{row}_{col}.png' ("" = detect, views_naming.h)
 };
 Bundle LoadLightField(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// LoadLightField keeping only the views ChooseViews picks (`requested` > 0: the central requested x requested). An
+// .h5 bundle is read only for those views: its views' mean weights first (ReadViewMeanWeights), then the central
+// block, so a stage that keeps 9x9 of a 15x15 decode never holds the 15x15 (issue 46). Other formats are read whole
+// and cropped. Either way the same light field, labels and disparity as loading everything and cropping; only the
+// kept views' samples are checked (RequireFiniteSamples).
+struct LoadedViews {
+  Bundle bundle;
+  ViewChoice choice;
+};
+LoadedViews LoadCentralViews(const std::filesystem::path& path, int requested, const LoadOptions& options = {});
 
 // Writes the light field in the format chosen by the output path: `.h5` -> bundle, `.png` -> ESLF, `.mat` ->
 // LFToolbox's LF(v, u, y, x, c) with the weight channel (mat_light_field.h), else a views

@@ -28,6 +28,9 @@ constexpr double kWellLitWeight = 0.4;
 
 // The mean weight of one view (the light field must have weights).
 double MeanViewWeight(const LightField& light_field, ViewIndex view);
+// The mean of `count` weights, summed in order in double: how every view's mean weight is taken, wherever the
+// weights come from (a light field, or a bundle read a row of views at a time: ReadViewMeanWeights).
+double MeanOfWeights(const float* weights, std::size_t count);
 
 // The rule ChooseViews applies, on any source of the views' mean weights: the side of the largest central square
 // of views (of the parity of the smaller view count) whose every view has a mean weight of at least `threshold`.
@@ -45,6 +48,10 @@ struct ViewChoice {
   std::string reason;
 };
 ViewChoice ChooseViews(const LightField& light_field, int requested = 0);
+// The same for a light field of the shape `shape` whose views' mean weights `mean_weight` gives (empty: it has no
+// weights), so that the views can be chosen before the samples are read (LoadCentralViews).
+ViewChoice ChooseViews(const LightFieldShape& shape, const std::function<double(ViewIndex)>& mean_weight,
+                       int requested = 0);
 
 // The views to request (for ChooseViews) when working with labels made on the well-lit central views (as segment
 // chooses them): `requested` when > 0, else the labels' view count when they have fewer views than the light field,
