@@ -425,6 +425,17 @@ void RequireBlockInside(const ViewBlock& block, const LightFieldShape& shape, co
                 std::to_string(shape.nu) + " x " + std::to_string(shape.nv) + " views of " + ToString(shape));
 }
 
+// The bundle's weights dataset, checked against the samples' shape; nothing when the bundle has none.
+std::optional<H5::DataSet> OpenWeights(const H5::H5File& file, const LightFieldShape& stored, const std::string& name) {
+  if (!file.nameExists("weights")) return std::nullopt;
+  H5::DataSet dataset = file.openDataSet("weights");
+  const std::vector<hsize_t> dims = Dimensions(dataset);
+  if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
+    ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
+  CheckSpatialMatch(dims, stored, name + ": dataset weights");
+  return dataset;
+}
+
 // The block's views of the samples, with the transfer and metadata, and their weights if `parts` asks for them.
 LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& samples, const LightFieldShape& stored,
                                      const ViewBlock& block, const BundleParts& parts, const std::string& name) {
@@ -435,14 +446,12 @@ LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& 
   if (!metadata.empty()) {
     light_field.metadata = ParseUntrustedJsonObject(metadata, name + ": attribute 'metadata'");
   }
-  if (!parts.weights || !file.nameExists("weights")) return light_field;
-  const H5::DataSet dataset = file.openDataSet("weights");
-  const std::vector<hsize_t> dims = Dimensions(dataset);
-  if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
-    ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
-  CheckSpatialMatch(dims, stored, name + ": dataset weights");
+  if (!parts.weights) return light_field;
+  const std::optional<H5::DataSet> dataset = OpenWeights(file, stored, name);
+  if (!dataset) return light_field;
   light_field.EnableWeights();
-  ReadSamplesAsFloat(dataset, light_field.weights().data(), SelectionOf(dataset, block, stored.nu), name + ": weights");
+  ReadSamplesAsFloat(*dataset, light_field.weights().data(), SelectionOf(*dataset, block, stored.nu),
+                     name + ": weights");
   return light_field;
 }
 
@@ -494,17 +503,13 @@ std::vector<double> ReadViewMeanWeights(const fs::path& path) {
     if (!file.nameExists("LF")) ThrowFileError(name, "no dataset 'LF': not a light-field bundle");
     const LightFieldShape stored = StoredShape(file.openDataSet("LF"), name);
     std::vector<double> means;
-    if (!file.nameExists("weights")) return means;
-    const H5::DataSet dataset = file.openDataSet("weights");
-    const std::vector<hsize_t> dims = Dimensions(dataset);
-    if (dims.size() != 4 || dims[0] != static_cast<hsize_t>(stored.nv) || dims[1] != static_cast<hsize_t>(stored.nu))
-      ThrowFileError(name, "dataset weights has shape " + DimsText(dims) + ", expected nv x nu x H x W");
-    CheckSpatialMatch(dims, stored, name + ": dataset weights");
+    const std::optional<H5::DataSet> dataset = OpenWeights(file, stored, name);
+    if (!dataset) return means;
     const std::size_t view_pixels = stored.ViewPixels();
     std::vector<float> row(static_cast<std::size_t>(stored.nu) * view_pixels);
     for (int v = 0; v < stored.nv; ++v) {
       const ViewBlock block{{0, v}, stored.nu, 1};
-      ReadSamplesAsFloat(dataset, row.data(), SelectionOf(dataset, block, stored.nu), name + ": weights");
+      ReadSamplesAsFloat(*dataset, row.data(), SelectionOf(*dataset, block, stored.nu), name + ": weights");
       for (int u = 0; u < stored.nu; ++u)
         means.push_back(MeanOfWeights(row.data() + static_cast<std::size_t>(u) * view_pixels, view_pixels));
     }
