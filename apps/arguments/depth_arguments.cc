@@ -45,6 +45,20 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
+      ->add_option("--horizon-slack", method.occluder_horizon.slack,
+                   "Near an edge, the partial patches stand in only at disparities below the occluder horizon plus "
+                   "this, px per view step: a pixel can be hidden from a view only by a surface nearer than it, "
+                   "and nearer by its distance over the longest view offset (the whole patch's disparity says where "
+                   "those are). Keeps thin bars and the flat surface beside an occluder from reading too near; < 0 = "
+                   "at every disparity")
+      ->capture_default_str();
+  command
+      ->add_option("--horizon-widening", method.occluder_horizon.widening,
+                   "Pixels: the whole patch's disparity is widened to its maximum over this radius before the "
+                   "horizon is drawn, so a disparity read a little too far beside an edge does not lower it")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 64));
+  command
       ->add_option("--p1", method.sgm.p1,
                    "SGM penalty for a one-label step, in units of the default cost; scaled with the cost's range "
                    "(x0.42 when the automatic detail weight leaves the detail term out of a lenslet decode)")

@@ -17,13 +17,13 @@ namespace lfsp::depth {
 namespace {
 
 // Whether the partial angular patches are admitted pixel by pixel (occlusion_alternatives.h) rather than everywhere.
-bool ChecksThinStructures(const DepthOptions& options) {
-  return options.occlusion_handling && options.thin_structures.reach > 0;
+bool AdmitsPartialPatches(const DepthOptions& options) {
+  return options.occlusion_handling && (options.thin_structures.reach > 0 || options.occluder_horizon.slack >= 0.0f);
 }
 
 // How many steps EstimateDepth times (as many laps as it makes).
 std::size_t StepsOf(const DepthOptions& options) {
-  return 4 + (ChecksThinStructures(options) ? 1 : 0) + (options.aggregation_radius > 0 ? 1 : 0) +
+  return 4 + (AdmitsPartialPatches(options) ? 1 : 0) + (options.aggregation_radius > 0 ? 1 : 0) +
          (options.regularise ? 2 : 0) + (options.regularise && options.plane_fit ? 1 : 0);
 }
 
@@ -115,18 +115,20 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   result.channel_weights = cost_options.channel_weights;
   result.sgm = PenaltiesForCost(options.sgm, cost_options);
   OcclusionAlternatives alternatives;
-  const bool check_thin_structures = occlusion && ChecksThinStructures(options);
+  const bool admit_partial_patches = occlusion && AdmitsPartialPatches(options);
   CostVolume cost = BuildCostVolume(light_field, disparities, cost_options, occlusion ? &*occlusion : nullptr,
-                                    check_thin_structures ? &alternatives : nullptr);
+                                    admit_partial_patches ? &alternatives : nullptr);
   lap("cost_volume");
-  if (check_thin_structures) {
+  if (admit_partial_patches) {
     // The whole patch's disparity, through the same semi-global pass as the final one (without local aggregation
-    // or refinement): it keeps thin structures in front.
+    // or refinement): it keeps thin structures and every other occluder in front (occlusion_alternatives.h).
     const DisparityMap whole_patch =
         options.regularise ? SelectDisparity(AggregateSemiGlobal(cost, centre, result.sgm), disparities).disparity
                            : SelectDisparity(cost, disparities).disparity;
-    result.thin_structure_refusals = AdmitOcclusionAlternatives(cost, alternatives, whole_patch, disparities,
-                                                                *occlusion, centre, options.thin_structures);
+    const LightFieldShape& shape = light_field.shape();
+    result.thin_structure_refusals = AdmitOcclusionAlternatives(
+        cost, alternatives, whole_patch, disparities, *occlusion, centre, options.thin_structures,
+        options.occluder_horizon, LongestViewOffset(shape.nu, shape.nv));
     alternatives = OcclusionAlternatives();
     lap("occlusion_alternatives");
   }

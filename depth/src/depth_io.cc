@@ -49,6 +49,8 @@ nlohmann::json ToJson(const DepthOptions& options) {
                              {"margin", options.thin_structures.margin},
                              {"colour_difference", options.thin_structures.colour_difference},
                              {"blend_difference", options.thin_structures.blend_difference}};
+  json["occluder_horizon"] = {{"slack", options.occluder_horizon.slack},
+                              {"widening", options.occluder_horizon.widening}};
   json["sgm"] = {{"p1", options.sgm.p1}, {"p2", options.sgm.p2}, {"edge_sigma", options.sgm.edge_sigma}};
   json["sub_label"] = {{"radius", options.sub_label.radius},
                        {"sigma", options.sub_label.sigma},

@@ -38,6 +38,8 @@ double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float dispa
          2.0 * std::max(presmooth_sigma, 0.0);
 }
 
+double LongestViewOffset(int nu, int nv) { return std::hypot((nu - 1) / 2, (nv - 1) / 2); }
+
 namespace {
 
 // The structure tensor of the view as given (not blurred like Canny's input): its forward differences' products

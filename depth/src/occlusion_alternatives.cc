@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 
 #include "lfsp/core/error.h"
@@ -82,16 +84,62 @@ void CheckShapes(const CostVolume& cost, const OcclusionAlternatives& alternativ
     throw Error("depth: occlusion alternatives need a float RGB centre view and an 8-bit occlusion map");
 }
 
+// The highest label a partial patch may stand in at, per pixel: the occluder horizon plus its slack (no limit
+// without a horizon).
+DisparityMap PartialPatchLimit(const DisparityMap& whole_patch, const OccluderHorizonOptions& horizon,
+                               double longest_view_offset) {
+  if (horizon.slack < 0.0f || !(longest_view_offset > 0.0))
+    return DisparityMap(whole_patch.width(), whole_patch.height(), std::numeric_limits<float>::infinity());
+  DisparityMap limit = OccluderHorizon(whole_patch, longest_view_offset, horizon.widening);
+  limit.Mat() += horizon.slack;
+  return limit;
+}
+
 }  // namespace
+
+DisparityMap OccluderHorizon(const DisparityMap& whole_patch, double longest_view_offset, int widening) {
+  if (!(longest_view_offset > 0.0)) throw Error("depth: the occluder horizon needs views off the centre");
+  DisparityMap horizon = whole_patch;
+  const int width = horizon.width();
+  const int height = horizon.height();
+  if (widening > 0) {
+    cv::Mat values = horizon.Mat();
+    cv::dilate(values, values,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * widening + 1, 2 * widening + 1)));
+  }
+  // Two chamfer passes: each pixel takes the largest of its own value and its already visited neighbours' less the
+  // fall over the step between them.
+  const float straight = static_cast<float>(1.0 / longest_view_offset);
+  const float diagonal = static_cast<float>(std::numbers::sqrt2 / longest_view_offset);
+  const auto pass = [&](int y, int x, int step) {
+    float value = horizon.at(y, x);
+    const int xb = x - step;  // the neighbour already visited in this row
+    const int yb = y - step;  // the row already visited
+    if (xb >= 0 && xb < width) value = std::max(value, horizon.at(y, xb) - straight);
+    if (yb >= 0 && yb < height) {
+      value = std::max(value, horizon.at(yb, x) - straight);
+      if (x - 1 >= 0) value = std::max(value, horizon.at(yb, x - 1) - diagonal);
+      if (x + 1 < width) value = std::max(value, horizon.at(yb, x + 1) - diagonal);
+    }
+    horizon.at(y, x) = value;
+  };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) pass(y, x, 1);
+  for (int y = height - 1; y >= 0; --y)
+    for (int x = width - 1; x >= 0; --x) pass(y, x, -1);
+  return horizon;
+}
 
 int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& alternatives,
                                const DisparityMap& whole_patch, const std::vector<float>& disparities,
                                const OcclusionMap& occlusion, const cv::Mat& centre,
-                               const ThinStructureOptions& options) {
+                               const ThinStructureOptions& options, const OccluderHorizonOptions& horizon,
+                               double longest_view_offset) {
   const int width = cost.width();
   const int height = cost.height();
   const int labels = cost.labels();
   CheckShapes(cost, alternatives, whole_patch, disparities, occlusion, centre);
+  const DisparityMap limit = PartialPatchLimit(whole_patch, horizon, longest_view_offset);
   int refused = 0;
 #pragma omp parallel for schedule(static) reduction(+ : refused)
   for (int y = 0; y < height; ++y) {
@@ -107,7 +155,9 @@ int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& al
           ++refused;
           continue;
         }
-        for (int l = 0; l < labels; ++l) curve[l] = std::min(curve[l], partial_curve[l]);
+        const float highest = limit.at(y, x);
+        for (int l = 0; l < labels; ++l)
+          if (disparities[static_cast<std::size_t>(l)] < highest) curve[l] = std::min(curve[l], partial_curve[l]);
       }
     }
   }

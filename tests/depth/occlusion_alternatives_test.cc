@@ -20,6 +20,7 @@ constexpr int kHeight = 3;
 const std::vector<float> kDisparities = {-1.0f, 0.0f, 1.0f};  // background, -, structure in front
 const cv::Vec3f kGrey(0.5f, 0.5f, 0.5f);
 const cv::Vec3f kRed(0.9f, 0.1f, 0.1f);
+const double kLongestViewOffset = 4.0 * std::numbers::sqrt2;  // 9 x 9 views
 
 // A layout across the edges: for each position, the whole patch's disparity and the centre view's colour (Scene
 // lays it out along x, along y or along the diagonal).
@@ -86,8 +87,9 @@ struct Scene {
   int Preferred(int position) const {
     return orientation == Orientation::kRows ? PreferredAt(1, position) : PreferredAt(position, 1);
   }
-  int Admit(const ThinStructureOptions& options = {}) {
-    return AdmitOcclusionAlternatives(cost, alternatives, whole_patch, kDisparities, occlusion, centre, options);
+  int Admit(const ThinStructureOptions& options = {}, const OccluderHorizonOptions& horizon = {}) {
+    return AdmitOcclusionAlternatives(cost, alternatives, whole_patch, kDisparities, occlusion, centre, options,
+                                      horizon, kLongestViewOffset);
   }
 
   Orientation orientation;
@@ -200,6 +202,59 @@ TEST(OcclusionAlternatives, AWideObjectIsNotAThinStructure) {
   Paint(layout, 2, 14, 1.0f, kRed);
   Scene scene(layout);
   EXPECT_EQ(scene.Admit(), 0);
+}
+
+// A pixel at disparity d can be hidden only by a surface nearer than d by its distance over the longest view offset.
+TEST(OccluderHorizon, FallsWithTheDistanceFromANearerSurface) {
+  DisparityMap disparity(9, 9, 0.0f);
+  disparity.at(4, 4) = 1.0f;
+  const DisparityMap horizon = OccluderHorizon(disparity, 4.0, 0);
+  EXPECT_FLOAT_EQ(horizon.at(4, 4), 1.0f);
+  EXPECT_FLOAT_EQ(horizon.at(4, 6), 0.5f);                                          // 2 px straight
+  EXPECT_NEAR(horizon.at(6, 6), 1.0f - 2.0f * std::numbers::sqrt2 / 4.0f, 1e-6);    // 2 px along the diagonal
+  EXPECT_NEAR(horizon.at(5, 6), 1.0f - (1.0f + std::numbers::sqrt2) / 4.0f, 1e-6);  // chamfer: 2.41 px, not 2.24
+  EXPECT_FLOAT_EQ(horizon.at(4, 8), 0.0f);  // 4 px: down to the background's own
+  EXPECT_FLOAT_EQ(horizon.at(0, 0), 0.0f);  // beyond: the background
+  // Widened by 1 px, the nearer surface covers its neighbours first.
+  const DisparityMap widened = OccluderHorizon(disparity, 4.0, 1);
+  EXPECT_FLOAT_EQ(widened.at(4, 5), 1.0f);
+  EXPECT_FLOAT_EQ(widened.at(4, 7), 0.5f);
+  EXPECT_THROW(OccluderHorizon(disparity, 0.0, 0), Error);
+}
+
+// On a flat background with nothing nearer around, a partial patch's dip at a nearer label is not an occlusion and
+// is not admitted; a surface in front within reach lets the same dip in up to its horizon.
+TEST(OcclusionAlternatives, APartialPatchStandsInOnlyBelowTheOccluderHorizon) {
+  const auto dip_at = [](Scene& scene, int label) {
+    for (int y = 0; y < scene.height; ++y)
+      for (int x = 0; x < scene.width; ++x)
+        for (int l = 0; l < 3; ++l) scene.alternatives.half.Curve(y, x)[l] = l == label ? 0.1f : 0.7f;
+  };
+  Scene alone(Background());
+  dip_at(alone, 1);
+  EXPECT_EQ(alone.Admit(), 0);
+  EXPECT_EQ(alone.Preferred(9), 0);  // the whole patch's background
+  // Without a horizon the dip wins, as the lower envelope always let it.
+  OccluderHorizonOptions off;
+  off.slack = -1.0f;
+  Scene unlimited(Background());
+  dip_at(unlimited, 1);
+  unlimited.Admit({}, off);
+  EXPECT_EQ(unlimited.Preferred(9), 1);
+
+  // A wide surface in front at positions 0..4: position 9 lies 5 px from it, 3 px once widened by 2, so its horizon
+  // is 1 - 3 / 5.66 = 0.47: the dip at 0 is admitted, one at 1 (the surface's own disparity) is not.
+  Layout layout = Background();
+  Paint(layout, 0, 5, 1.0f, kRed);
+  Scene beside(layout);
+  dip_at(beside, 1);
+  beside.Admit();
+  EXPECT_EQ(beside.Preferred(9), 1);
+  Scene nearer(layout);
+  dip_at(nearer, 2);
+  nearer.Admit();
+  EXPECT_EQ(nearer.Preferred(9), 0);
+  EXPECT_EQ(nearer.Preferred(5), 2);  // beside the surface the horizon reaches its disparity
 }
 
 TEST(OcclusionAlternatives, VolumesOfAnotherShapeAreAnError) {

@@ -27,6 +27,8 @@ struct DepthOptions {
   OcclusionOptions occlusion;
   // Near edges, where a partial angular patch may replace the whole one: refused on thin structures in front.
   ThinStructureOptions thin_structures;
+  // ... and only at the labels where a nearer surface around can hide the pixel from some view.
+  OccluderHorizonOptions occluder_horizon;
   int aggregation_radius = 0;         // edge-aware (guided filter) cost aggregation before SGM (0 = off)
   float aggregation_epsilon = 1e-3f;  // guided filter regularisation (squared intensity units)
   SgmOptions sgm;

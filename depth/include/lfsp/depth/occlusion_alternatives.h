@@ -36,12 +36,38 @@ struct ThinStructureOptions {
   float blend_difference = 0.05f;  // layers: 0.03-0.05 alike; at 0.1 a picket's mixed pixels pass for blends
 };
 
-// Lowers `cost` to each alternative's cost at every pixel where that alternative is admitted (see above);
+// Which labels a partial patch may stand in at. A pixel p at disparity d is hidden from view (du, dv) by a surface at
+// disparity d' > d that lies (du, dv) (d' - d) away from it in the centre view (docs/DESIGN.md's shifts), so it can
+// be hidden from some view only if a pixel q stands nearer than d by at least |q - p| / R, R the longest view offset:
+// d < max over q of (D(q) - |q - p| / R), the occluder horizon. Above it every view sees the pixel, and a partial
+// patch's lower cost is noise or a mixed edge pixel's, not an occlusion: the lower envelope of two halves then reads
+// a thin bar nearer than it stands (the bars scene's 2 px bar at 0.9 px read 0.98) and spreads an occluder into
+// the flat surface beside it. D is the whole patch's disparity, which keeps every occluder in front.
+struct OccluderHorizonOptions {
+  // Partial patches stand in at labels below the horizon plus this (px per view step); < 0 = at every label (no
+  // horizon). Without slack the envelope's lower cost below the horizon, and not above it, pulls surfaces whose
+  // disparity the whole patch reads a little too far further away still (HCI antinous' dark floor).
+  float slack = 0.1f;
+  // Pixels: D is first widened to its maximum over a disc of this radius, so that a whole-patch disparity read a
+  // little too far next to an edge does not lower the horizon there.
+  int widening = 2;
+};
+
+// The occluder horizon of `whole_patch` (see OccluderHorizonOptions) for views at most `longest_view_offset` view
+// steps from the centre view: D widened, then max over q of (D(q) - dist(q, p) / longest_view_offset), dist the
+// 8-neighbour chamfer distance (steps of 1 and sqrt 2; at most 8 % above the Euclidean, so the horizon is at most
+// that much lower far from an occluder).
+DisparityMap OccluderHorizon(const DisparityMap& whole_patch, double longest_view_offset, int widening);
+
+// Lowers `cost` to each alternative's cost at every pixel where that alternative is admitted (see above), and there
+// only at the labels below the occluder horizon (`horizon`, with its slack; every label when horizon.slack < 0);
 // `whole_patch` is the disparity estimated from `cost` as given. `centre` is the CV_32FC3 centre view (what the
-// occlusion map was detected on). Returns how many (pixel, alternative) pairs were refused.
+// occlusion map was detected on); `longest_view_offset` the longest offset of a view in the cost from the centre view,
+// in view steps. Returns how many (pixel, alternative) pairs were refused.
 int AdmitOcclusionAlternatives(CostVolume& cost, const OcclusionAlternatives& alternatives,
                                const DisparityMap& whole_patch, const std::vector<float>& disparities,
                                const OcclusionMap& occlusion, const cv::Mat& centre,
-                               const ThinStructureOptions& options);
+                               const ThinStructureOptions& options, const OccluderHorizonOptions& horizon,
+                               double longest_view_offset);
 
 }  // namespace lfsp::depth
