@@ -64,10 +64,10 @@ struct OcclusionMap {
 // The cap: a real edge rarely separates the two ends of a wide range, and beyond it the half patch only discards
 // views (antinous, range 6.1 over 9x9 views: 5.86 % at 12.2 px, 6.3 % at 24.4 px).
 constexpr double kMaxAutomaticOcclusionRadius = 12.0;
+double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max, double presmooth_sigma = 0.0);
 
 // The longest offset of a view of an nu x nv light field from its centre view, in view steps (a corner view's).
 double LongestViewOffset(int nu, int nv);
-double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max, double presmooth_sigma = 0.0);
 
 // Wang et al.'s detector: Canny on each channel of the centre view, OR-ed; the split's orientation from the smoothed
 // gradient at the edge pixel, the views along the edge from the local structure tensor there (along_window_sigma);
