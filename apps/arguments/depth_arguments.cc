@@ -127,7 +127,7 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
   command
       ->add_option("--wide-median-radius", method.median.wide_radius,
                    "Radius of the wide weighted median, which corrects gross errors such as a thin occluder's "
-                   "disparity spread over a flat region beside it (occluders: BadPix 0.07 3.50 -> 2.25 %); 0, or "
+                   "disparity spread over a flat region beside it (occluders: BadPix 0.07 2.27 -> 1.74 %); 0, or "
                    "at most --median-radius, = off")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
