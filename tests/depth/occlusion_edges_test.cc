@@ -100,8 +100,8 @@ TEST(OcclusionEdges, BarsOfEveryWidthStandInFrontOfEachWall) {
 
 // Near an edge a half of the angular patch stands in only below the occluder horizon (occlusion_alternatives.h): the
 // plain lower envelope of the two halves read the 4 px bar 0.05-0.07 px too near, a dip no occluder explains.
-// CostOptions::halves_agree_labels >= 0 (a half only where the two halves disagree) reads it right too; the camera
-// decodes keep the envelope (cost_volume.h).
+// CostOptions::halves_agree_labels >= 0 (a half only where the two halves disagree) reads it right too, but is not
+// the default: on the camera decodes it spreads the foreground (cost_volume.h).
 TEST(OcclusionEdges, TheOccluderHorizonKeepsThinBarsAtTheirDisparity) {
   const Rendered rendered = Render("bars");
   const DisparityMap& gt = rendered.rendered.disparity;

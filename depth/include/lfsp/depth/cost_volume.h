@@ -84,10 +84,11 @@ struct CostOptions {
   // Near an edge, which half of the angular patch may stand in for the whole one. -1 (default): the lower envelope
   // of the two halves, label by label. N >= 0: the two halves' best labels within N labels of each other mean that
   // no occluder hides the pixel from either half, and the whole patch stays; otherwise only the half whose best label
-  // costs less stands in. On clean renderings N = 3 reads thin bars right where the envelope reads them too near
-  // (the bars scene's 4 px bar at 0.40 px: 0.45-0.47; BadPix 0.07 1.54 -> 1.05 %), but on the simulated cameras'
-  // decodes, whose views are blurred by the optics, it spreads the foreground instead (F01 two-horses capture 2.86 ->
-  // 5.43 %, 99.8 % of the new bad pixels nearer): BENCHMARKS.md, thirtieth session.
+  // costs less stands in. On clean renderings N = 3 reads thin bars right where the envelope read them too near
+  // (the bars scene's 4 px bar at 0.40 px: 0.45-0.47; BadPix 0.07 1.54 -> 1.05 %; since the occluder horizon keeps the
+  // envelope's dips off that bar, 1.35 by default against 1.02 % with N = 3), but on the simulated cameras' decodes,
+  // whose views are blurred by the optics, it spreads the foreground instead (F01 two-horses capture 2.86 -> 5.43 %,
+  // 99.8 % of the new bad pixels nearer): BENCHMARKS.md, thirtieth session.
   int halves_agree_labels = -1;
   // Near an edge, the views along it (the pair of opposite sectors nearest its direction, OcclusionMap::along)
   // replace the whole patch where their cost times this factor is lower; 0 = off. A pixel in a gap between two
