@@ -17,9 +17,7 @@ void AddViewsOption(CLI::App* command, int& views) {
 }
 
 nlohmann::json SelectViews(Bundle& bundle, int requested, const std::string& source) {
-  const ViewChoice choice = ChooseViews(bundle.light_field, requested);
-  KeepCentralViews(bundle.light_field, bundle.labels, choice.n);
-  return ViewChoiceSummary(choice, source);
+  return ViewChoiceSummary(KeepChosenViews(bundle.light_field, bundle.labels, requested), source);
 }
 
 nlohmann::json ViewChoiceSummary(const ViewChoice& choice, const std::string& source) {

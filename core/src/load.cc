@@ -122,8 +122,7 @@ LoadedViews LoadCentralViews(const fs::path& path, int requested, const LoadOpti
   LoadedViews loaded;
   if (DetectLightFieldFormat(path) != LightFieldFormat::kHdf5Bundle) {
     loaded.bundle = LoadLightField(path, options);
-    loaded.choice = ChooseViews(loaded.bundle.light_field, requested);
-    KeepCentralViews(loaded.bundle.light_field, loaded.bundle.labels, loaded.choice.n);
+    loaded.choice = KeepChosenViews(loaded.bundle.light_field, loaded.bundle.labels, requested);
     return loaded;
   }
   const LightFieldShape shape = ReadBundleShape(path);

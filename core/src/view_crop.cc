@@ -135,4 +135,10 @@ void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, in
   if (labels && (n != labels->shape().nu || n != labels->shape().nv)) labels = CentralViews(*labels, n);
 }
 
+ViewChoice KeepChosenViews(LightField& light_field, std::optional<Labels>& labels, int requested) {
+  ViewChoice choice = ChooseViews(light_field, requested);
+  KeepCentralViews(light_field, labels, choice.n);
+  return choice;
+}
+
 }  // namespace lfsp

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 #include <vector>
 
+#include "lfsp/core/conventions.h"
 #include "lfsp/core/error.h"
 
 namespace lfsp::depth {
@@ -32,13 +34,28 @@ int AlongPairForEdgeNormal(double normal_radians) {
   return ((sector % (kSectors / 2)) + kSectors / 2) % (kSectors / 2);
 }
 
+namespace {
+
+// How far the outermost views lie from the centre view along u and along v, in view steps. With an even view count
+// the centre view (CentreView) sits left of the middle, so the far side is one step longer than (n - 1) / 2.
+std::pair<int, int> OutermostOffsets(int nu, int nv) {
+  const ViewIndex centre = CentreView(nu, nv);
+  return {std::max(centre.u, nu - 1 - centre.u), std::max(centre.v, nv - 1 - centre.v)};
+}
+
+}  // namespace
+
 double AutomaticOcclusionRadius(int nu, int nv, float disparity_min, float disparity_max, double presmooth_sigma) {
-  const double offset = std::max((nu - 1) / 2, (nv - 1) / 2);
+  const auto [along_u, along_v] = OutermostOffsets(nu, nv);
+  const double offset = std::max(along_u, along_v);
   return std::clamp(offset * static_cast<double>(disparity_max - disparity_min), 2.0, kMaxAutomaticOcclusionRadius) +
          2.0 * std::max(presmooth_sigma, 0.0);
 }
 
-double LongestViewOffset(int nu, int nv) { return std::hypot((nu - 1) / 2, (nv - 1) / 2); }
+double LongestViewOffset(int nu, int nv) {
+  const auto [along_u, along_v] = OutermostOffsets(nu, nv);
+  return std::hypot(along_u, along_v);
+}
 
 namespace {
 

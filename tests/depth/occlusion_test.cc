@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <opencv2/core.hpp>
@@ -36,6 +37,15 @@ TEST(Occlusion, AutomaticRadiusIsTheLargestShiftPlusTheBlur) {
   EXPECT_DOUBLE_EQ(AutomaticOcclusionRadius(9, 9, -1.0f, 1.0f, 2.5), 13.0);  // presmoothing spreads the edge 2 sigma
   EXPECT_DOUBLE_EQ(AutomaticOcclusionRadius(9, 9, -3.3f, 2.8f), kMaxAutomaticOcclusionRadius);
   EXPECT_DOUBLE_EQ(AutomaticOcclusionRadius(3, 3, 0.0f, 0.5f), 2.0);  // at least 2 px
+  // 8x8 views: the centre view is (3, 3), so view 7 is 4 steps away on that side.
+  EXPECT_DOUBLE_EQ(AutomaticOcclusionRadius(8, 8, -1.0f, 1.0f), 8.0);
+}
+
+TEST(Occlusion, LongestViewOffsetIsTheFarthestCornerView) {
+  EXPECT_DOUBLE_EQ(LongestViewOffset(9, 9), 4.0 * std::numbers::sqrt2);
+  EXPECT_DOUBLE_EQ(LongestViewOffset(8, 8), 4.0 * std::numbers::sqrt2);  // centre (3, 3), view (7, 7)
+  EXPECT_DOUBLE_EQ(LongestViewOffset(7, 5), std::hypot(3.0, 2.0));
+  EXPECT_DOUBLE_EQ(LongestViewOffset(2, 1), 1.0);
 }
 
 // A comb of 1 px teeth with 1 px gaps in front of a smooth random texture, as the simulator's comb scene: teeth along

@@ -62,4 +62,7 @@ int ViewsForLabels(int requested, const LightFieldShape& light_field, const Ligh
 // the view count).
 void KeepCentralViews(LightField& light_field, std::optional<Labels>& labels, int n);
 
+// ChooseViews, then KeepCentralViews of the choice: what a stage does with a light field it has read whole.
+ViewChoice KeepChosenViews(LightField& light_field, std::optional<Labels>& labels, int requested = 0);
+
 }  // namespace lfsp
