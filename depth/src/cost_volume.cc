@@ -20,7 +20,7 @@ namespace {
 
 // One non-centre view: where its samples are, how far it sits from the centre view, and its angular sector.
 struct ViewPlan {
-  const float* features;  // the view's feature rows: R, G, B (and detail) interleaved
+  const float* features;  // the view's feature rows: R, G, B (and detail), planar (FeatureImages)
   float du;               // u - uc
   float dv;               // v - vc
   int sector;
@@ -41,50 +41,84 @@ struct TermWeights {
   float detail_weight;
 };
 
-// One view's feature row resampled at (x + sx, y + sy) and compared with the centre view's feature row:
-// differences[kC x + c] = |sample - centre|, per feature channel. Samples beyond the border are clamped. Built twice
-// (AVX2 and generic) and chosen at run time: the interpolation runs over the interleaved samples as one contiguous,
-// vectorised loop.
-//
-// Bilinear: two taps per axis.
-template <int kC>
-__attribute__((target_clones("avx2", "default"))) void DifferencesBilinear(const float* view, int width, int height,
-                                                                           int y, float sx, float sy,
-                                                                           const float* centre_row,
-                                                                           float* differences) {
+// How one view is resampled at one label's shift (sx, sy): the whole-pixel part and the weights of the taps on each
+// axis. Bilinear uses taps 0 and 1 (weights 1 - a, a); noise-matched taps -1 .. 2 (NoiseMatchedWeights).
+struct Taps {
+  int ix;
+  int iy;
+  std::array<float, 4> wx;
+  std::array<float, 4> wy;
+};
+
+Taps TapsFor(bool noise_matched, float sx, float sy) {
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
   const float ax = sx - fx;
   const float ay = sy - fy;
-  const int ix = static_cast<int>(fx);
-  const int iy = static_cast<int>(fy);
-  const int y0 = std::clamp(y + iy, 0, height - 1);
-  const int y1 = std::clamp(y + iy + 1, 0, height - 1);
+  Taps taps{static_cast<int>(fx), static_cast<int>(fy), {1.0f - ax, ax, 0.0f, 0.0f}, {1.0f - ay, ay, 0.0f, 0.0f}};
+  if (noise_matched) {
+    taps.wx = NoiseMatchedWeights(ax);
+    taps.wy = NoiseMatchedWeights(ay);
+  }
+  return taps;
+}
+
+// One pixel's cost from its feature differences |sample - centre| (CostOptions):
+// colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
+// + detail_weight * min(|d detail|, truncation).
+template <int kC>
+[[gnu::always_inline]] inline float PixelCost(const float (&difference)[kC], const TermWeights& terms) {
+  const float colour = std::min(std::max(terms.channel[0] * difference[0] + terms.channel[1] * difference[1] +
+                                             terms.channel[2] * difference[2] - terms.colour_deadzone,
+                                         0.0f),
+                                terms.colour_truncation);
+  float cost = terms.colour_weight * colour;
+  if constexpr (kC > kColourChannels) cost += terms.detail_weight * std::min(difference[3], terms.detail_truncation);
+  return cost;
+}
+
+// One view's feature row resampled at (x + sx, y + sy), compared with the centre view's feature row and turned into
+// costs[x] (PixelCost). Rows are planar (FeatureImages): each channel's `width` samples in turn, so one loop over x
+// resamples every channel and sums the pixel's cost, vectorised across pixels. Samples beyond the border are
+// clamped. Built twice (AVX2 and generic) and chosen at run time.
+//
+// Bilinear: two taps per axis.
+template <int kC>
+__attribute__((target_clones("avx2", "default"))) void RowCostsBilinear(const float* view, int width, int height, int y,
+                                                                        const Taps& taps, const float* centre_row,
+                                                                        const TermWeights terms,
+                                                                        float* __restrict costs) {
+  const int ix = taps.ix;
+  const int y0 = std::clamp(y + taps.iy, 0, height - 1);
+  const int y1 = std::clamp(y + taps.iy + 1, 0, height - 1);
   const std::size_t stride = static_cast<std::size_t>(width) * kC;
   const float* row0 = view + static_cast<std::size_t>(y0) * stride;
   const float* row1 = view + static_cast<std::size_t>(y1) * stride;
-  const float w00 = (1.0f - ax) * (1.0f - ay);
-  const float w01 = ax * (1.0f - ay);
-  const float w10 = (1.0f - ax) * ay;
-  const float w11 = ax * ay;
-
-  // Columns whose two taps are both inside the row: one contiguous run over the interleaved samples.
+  const float w00 = taps.wx[0] * taps.wy[0];
+  const float w01 = taps.wx[1] * taps.wy[0];
+  const float w10 = taps.wx[0] * taps.wy[1];
+  const float w11 = taps.wx[1] * taps.wy[1];
+  // The sample of channel c from its taps at columns c0 and c1 (c1 = c0 + 1 but where clamped).
+  const auto sample = [&](int c, int c0, int c1) {
+    const float* r0 = row0 + c * width;
+    const float* r1 = row1 + c * width;
+    return w00 * r0[c0] + w01 * r0[c1] + w10 * r1[c0] + w11 * r1[c1];
+  };
+  // Columns whose two taps are both inside the row: one vectorised loop.
   const int x_begin = std::clamp(-ix, 0, width);
   const int x_end = std::clamp(width - 1 - ix, x_begin, width);
-  const int shift = kC * ix;
-  for (int p = kC * x_begin; p < kC * x_end; ++p) {
-    const int q = p + shift;
-    const float sample = w00 * row0[q] + w01 * row0[q + kC] + w10 * row1[q] + w11 * row1[q + kC];
-    differences[p] = std::abs(sample - centre_row[p]);
+  for (int x = x_begin; x < x_end; ++x) {
+    float difference[kC];
+    for (int c = 0; c < kC; ++c) difference[c] = std::abs(sample(c, x + ix, x + ix + 1) - centre_row[c * width + x]);
+    costs[x] = PixelCost<kC>(difference, terms);
   }
   // The few columns near the border: clamp each tap.
-  auto clamped = [&](int x) {
-    const int c0 = std::clamp(x + ix, 0, width - 1) * kC;
-    const int c1 = std::clamp(x + ix + 1, 0, width - 1) * kC;
-    for (int c = 0; c < kC; ++c) {
-      const float sample = w00 * row0[c0 + c] + w01 * row0[c1 + c] + w10 * row1[c0 + c] + w11 * row1[c1 + c];
-      differences[kC * x + c] = std::abs(sample - centre_row[kC * x + c]);
-    }
+  const auto clamped = [&](int x) {
+    const int c0 = std::clamp(x + ix, 0, width - 1);
+    const int c1 = std::clamp(x + ix + 1, 0, width - 1);
+    float difference[kC];
+    for (int c = 0; c < kC; ++c) difference[c] = std::abs(sample(c, c0, c1) - centre_row[c * width + x]);
+    costs[x] = PixelCost<kC>(difference, terms);
   };
   for (int x = 0; x < x_begin; ++x) clamped(x);
   for (int x = x_end; x < width; ++x) clamped(x);
@@ -93,19 +127,15 @@ __attribute__((target_clones("avx2", "default"))) void DifferencesBilinear(const
 // Noise-matched (noise_matched_kernel.h): four taps per axis, separably: the four rows are mixed into `mixed`
 // (kC * width floats of scratch), then four columns of that.
 template <int kC>
-__attribute__((target_clones("avx2", "default"))) void DifferencesNoiseMatched(const float* view, int width, int height,
-                                                                               int y, float sx, float sy,
-                                                                               const float* centre_row,
-                                                                               float* differences, float* mixed) {
-  const float fx = std::floor(sx);
-  const float fy = std::floor(sy);
-  const int ix = static_cast<int>(fx);
-  const int iy = static_cast<int>(fy);
-  const std::array<float, 4> wx = NoiseMatchedWeights(sx - fx);
-  const std::array<float, 4> wy = NoiseMatchedWeights(sy - fy);
+__attribute__((target_clones("avx2", "default"))) void RowCostsNoiseMatched(
+    const float* view, int width, int height, int y, const Taps& taps, const float* centre_row, const TermWeights terms,
+    float* __restrict costs, float* __restrict mixed) {
+  const std::array<float, 4>& wx = taps.wx;
+  const std::array<float, 4>& wy = taps.wy;
+  const int ix = taps.ix;
   const std::size_t stride = static_cast<std::size_t>(width) * kC;
   const auto row = [&](int k) {
-    return view + static_cast<std::size_t>(std::clamp(y + iy - 1 + k, 0, height - 1)) * stride;
+    return view + static_cast<std::size_t>(std::clamp(y + taps.iy - 1 + k, 0, height - 1)) * stride;
   };
   {
     const float* __restrict r0 = row(0);
@@ -118,43 +148,34 @@ __attribute__((target_clones("avx2", "default"))) void DifferencesNoiseMatched(c
   // Columns whose four taps are all inside the row.
   const int x_begin = std::clamp(1 - ix, 0, width);
   const int x_end = std::clamp(width - 2 - ix, x_begin, width);
-  const int shift = kC * ix;
-  for (int p = kC * x_begin; p < kC * x_end; ++p) {
-    const int q = p + shift;
-    const float sample = wx[0] * mixed[q - kC] + wx[1] * mixed[q] + wx[2] * mixed[q + kC] + wx[3] * mixed[q + 2 * kC];
-    differences[p] = std::abs(sample - centre_row[p]);
+  for (int x = x_begin; x < x_end; ++x) {
+    float difference[kC];
+    for (int c = 0; c < kC; ++c) {
+      const float* m = mixed + c * width + x + ix;
+      const float sample = wx[0] * m[-1] + wx[1] * m[0] + wx[2] * m[1] + wx[3] * m[2];
+      difference[c] = std::abs(sample - centre_row[c * width + x]);
+    }
+    costs[x] = PixelCost<kC>(difference, terms);
   }
-  auto clamped = [&](int x) {
+  const auto clamped = [&](int x) {
+    float difference[kC];
     for (int c = 0; c < kC; ++c) {
       float sample = 0.0f;
-      for (int k = 0; k < 4; ++k) sample += wx[k] * mixed[std::clamp(x + ix - 1 + k, 0, width - 1) * kC + c];
-      differences[kC * x + c] = std::abs(sample - centre_row[kC * x + c]);
+      for (int k = 0; k < 4; ++k) sample += wx[k] * mixed[c * width + std::clamp(x + ix - 1 + k, 0, width - 1)];
+      difference[c] = std::abs(sample - centre_row[c * width + x]);
     }
+    costs[x] = PixelCost<kC>(difference, terms);
   };
   for (int x = 0; x < x_begin; ++x) clamped(x);
   for (int x = x_end; x < width; ++x) clamped(x);
 }
 
-// Per pixel, from the feature differences:
-// cost[x] = colour_weight * min(max(wR |dR| + wG |dG| + wB |dB| - deadzone, 0), truncation)
-//           + detail_weight * min(|d detail|, truncation),
-// added to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x] where in_along[x]
-// is 1 (if along is not null). `cost` is scratch for width floats.
-template <int kC>
-__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* __restrict d, int width,
-                                                                         TermWeights terms, float* __restrict cost,
+// Adds one row's costs to total[x], to half_a[x] where in_half_a[x] is 1 (if half_a is not null), and to along[x]
+// where in_along[x] is 1 (if along is not null).
+__attribute__((target_clones("avx2", "default"))) void AccumulateRowCost(const float* __restrict cost, int width,
                                                                          float* total, const float* in_half_a,
                                                                          float* half_a, const float* in_along,
                                                                          float* along) {
-  const float wr = terms.channel[0], wg = terms.channel[1], wb = terms.channel[2];
-  for (int x = 0; x < width; ++x) {
-    const float colour =
-        std::min(std::max(wr * d[kC * x] + wg * d[kC * x + 1] + wb * d[kC * x + 2] - terms.colour_deadzone, 0.0f),
-                 terms.colour_truncation);
-    cost[x] = terms.colour_weight * colour;
-    if constexpr (kC > kColourChannels)
-      cost[x] += terms.detail_weight * std::min(d[kC * x + 3], terms.detail_truncation);
-  }
   for (int x = 0; x < width; ++x) total[x] += cost[x];
   if (half_a != nullptr) {
     for (int x = 0; x < width; ++x) half_a[x] += cost[x] * in_half_a[x];
@@ -175,19 +196,19 @@ struct RowAccumulators {
 
 // One view's cost at one label for one row, added to the tile's accumulators.
 template <int kC>
-void AddViewRow(bool noise_matched, const float* view, int width, int height, int y, float sx, float sy,
-                const float* centre_row, const TermWeights& terms, float* differences, float* mixed, float* costs,
+void AddViewRow(bool noise_matched, const float* view, int width, int height, int y, const Taps& taps,
+                const float* centre_row, const TermWeights& terms, float* mixed, float* costs,
                 const RowAccumulators& into) {
   if (noise_matched) {
-    DifferencesNoiseMatched<kC>(view, width, height, y, sx, sy, centre_row, differences, mixed);
+    RowCostsNoiseMatched<kC>(view, width, height, y, taps, centre_row, terms, costs, mixed);
   } else {
-    DifferencesBilinear<kC>(view, width, height, y, sx, sy, centre_row, differences);
+    RowCostsBilinear<kC>(view, width, height, y, taps, centre_row, terms, costs);
   }
-  AccumulateRowCost<kC>(differences, width, terms, costs, into.total, into.in_half_a, into.half_a, into.in_along,
-                        into.along);
+  AccumulateRowCost(costs, width, into.total, into.in_half_a, into.half_a, into.in_along, into.along);
 }
 
-// Every view's features, interleaved per pixel (`channels` of them), views in the light field's order.
+// Every view's features (`channels` of them), views in the light field's order, each view's rows planar: a row
+// holds each channel's `width` samples in turn, so the cost's inner loop runs over contiguous pixels of each channel.
 struct FeatureImages {
   int channels = kColourAndDetailChannels;
   std::vector<float> samples;
@@ -198,15 +219,35 @@ struct FeatureImages {
   }
 };
 
+// Channel c of a view stored with planar rows (`channels` channels), as a strided single-channel image.
+cv::Mat PlanarChannel(const float* view, const LightFieldShape& shape, int channels, int c) {
+  const std::size_t row_bytes =
+      static_cast<std::size_t>(shape.width) * static_cast<std::size_t>(channels) * sizeof(float);
+  return cv::Mat(shape.height, shape.width, CV_32F,
+                 const_cast<float*>(view) + static_cast<std::ptrdiff_t>(c) * shape.width, row_bytes);
+}
+
+// Copies the channels of `sources` (in order) into the planar rows of `view`.
+void StorePlanar(const std::vector<cv::Mat>& sources, float* view, const LightFieldShape& shape, int channels) {
+  std::vector<cv::Mat> planes;
+  std::vector<int> from_to;
+  for (int c = 0; c < channels; ++c) {
+    planes.push_back(PlanarChannel(view, shape, channels, c));
+    from_to.insert(from_to.end(), {c, c});
+  }
+  cv::mixChannels(sources, planes, from_to);
+}
+
 // The centre view's features as the noise-matched sampler compares them: blurred by kNoiseMatchedCentreKernel.
 std::vector<float> NoiseMatchedCentre(const FeatureImages& features, const LightFieldShape& shape) {
   std::vector<float> blurred(shape.ViewPixels() * static_cast<std::size_t>(features.channels));
-  const cv::Mat source(shape.height, shape.width, CV_32FC(features.channels),
-                       const_cast<float*>(features.View(shape, shape.Centre())));
-  cv::Mat target(shape.height, shape.width, CV_32FC(features.channels), blurred.data());
   const cv::Mat kernel(3, 1, CV_32F, const_cast<float*>(kNoiseMatchedCentreKernel.data()));
-  // Replicated borders, as the resampled views clamp their taps.
-  cv::sepFilter2D(source, target, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  for (int c = 0; c < features.channels; ++c) {
+    const cv::Mat source = PlanarChannel(features.View(shape, shape.Centre()), shape, features.channels, c);
+    cv::Mat target = PlanarChannel(blurred.data(), shape, features.channels, c);
+    // Replicated borders, as the resampled views clamp their taps.
+    cv::sepFilter2D(source, target, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  }
   return blurred;
 }
 
@@ -222,22 +263,16 @@ FeatureImages MakeFeatureImages(const LightField& light_field, const CostOptions
   const int views = static_cast<int>(shape.Views());
 #pragma omp parallel for schedule(dynamic)
   for (int i = 0; i < views; ++i) {
-    const ViewIndex view = ViewFromCameraNumber(i, shape.nu);
-    cv::Mat target(shape.height, shape.width, CV_32FC(features.channels),
-                   features.samples.data() + static_cast<std::size_t>(i) * view_samples);
-    const bool presmooth = options.presmooth_sigma > 0.0;
-    if (!with_detail) {
-      if (presmooth)
-        PresmoothView(light_field.View(view), options.presmooth_sigma, target);
-      else
-        light_field.View(view).copyTo(target);
-      continue;
-    }
-    cv::Mat rgb = light_field.View(view);
-    if (presmooth) {
+    float* target = features.samples.data() + static_cast<std::size_t>(i) * view_samples;
+    cv::Mat rgb = light_field.View(ViewFromCameraNumber(i, shape.nu));
+    if (options.presmooth_sigma > 0.0) {
       cv::Mat smoothed;
       PresmoothView(rgb, options.presmooth_sigma, smoothed);
       rgb = smoothed;
+    }
+    if (!with_detail) {
+      StorePlanar({rgb}, target, shape, features.channels);
+      continue;
     }
     cv::Mat detail = DetailHighPass(rgb, options.detail_sigma);
     if (options.detail_normalise_sigma > 0.0f) {
@@ -249,9 +284,7 @@ FeatureImages MakeFeatureImages(const LightField& light_field, const CostOptions
       energy += options.detail_normalise_epsilon;
       cv::divide(detail, energy, detail);
     }
-    const cv::Mat sources[] = {rgb, detail};
-    const int from_to[] = {0, 0, 1, 1, 2, 2, 3, 3};
-    cv::mixChannels(sources, 2, &target, 1, from_to, 4);
+    StorePlanar({rgb, detail}, target, shape, features.channels);
   }
   return features;
 }
@@ -439,7 +472,6 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     const bool along_edge = occlusion && options.along_edge_penalty > 0.0f;
     std::vector<float> alongs(along_edge ? totals.size() : 0);
     std::vector<float> in_along(along_edge ? static_cast<std::size_t>(kSectors) * tile_size : 0);
-    std::vector<float> differences(row_samples);
     std::vector<float> costs(static_cast<std::size_t>(width));
     std::vector<float> mixed(noise_matched ? row_samples : 0);
     auto row_of = [&](std::vector<float>& buffer, int index, int row) {
@@ -471,13 +503,12 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
         for (int l = 0; l < labels; ++l) {
           // docs/DESIGN.md: the centre pixel (x, y) at disparity d is seen in view (u, v) at (x - du*d, y - dv*d).
           const float d = disparities[static_cast<std::size_t>(l)];
-          const float sx = -plan.du * d;
-          const float sy = -plan.dv * d;
+          const Taps taps = TapsFor(noise_matched, -plan.du * d, -plan.dv * d);
           for (int y = y_begin; y < y_end; ++y) {
             const int row = y - y_begin;
             const float* centre_row = centre + static_cast<std::size_t>(y) * row_samples;
-            add_view_row(noise_matched, plan.features, width, height, y, sx, sy, centre_row, terms, differences.data(),
-                         mixed.data(), costs.data(),
+            add_view_row(noise_matched, plan.features, width, height, y, taps, centre_row, terms, mixed.data(),
+                         costs.data(),
                          {row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
                           occlusion ? row_of(halves, l, row) : nullptr,
                           along_edge ? row_of(in_along, plan.sector, row) : nullptr,

@@ -12,21 +12,23 @@ namespace lfsp::depth {
 namespace {
 
 // One step along a path: out[d] = cost[d] + min(prev[d], prev[d±1] + p1, min(prev) + p2) - min(prev).
-// Returns min(out) for the next step.
+// Returns min(out) for the next step. The first and last labels (one neighbour each) are taken apart so the labels
+// between run as one vectorised loop; the minimum is exact in any order, so the result does not depend on it.
 __attribute__((target_clones("avx2", "default"))) float PathStep(const float* __restrict cost,
                                                                  const float* __restrict previous, float previous_min,
                                                                  float p1, float p2, int labels, float* __restrict out,
                                                                  float* __restrict sum) {
   const float jump = previous_min + p2;
-  float out_min = std::numeric_limits<float>::max();
-  for (int d = 0; d < labels; ++d) {
-    const float below = d > 0 ? previous[d - 1] : std::numeric_limits<float>::max();
-    const float above = d + 1 < labels ? previous[d + 1] : std::numeric_limits<float>::max();
+  const auto step = [&](int d, float below, float above) {
     const float best = std::min(std::min(previous[d], std::min(below, above) + p1), jump);
     out[d] = cost[d] + best - previous_min;
     sum[d] += out[d];
-    out_min = std::min(out_min, out[d]);
-  }
+    return out[d];
+  };
+  constexpr float kNone = std::numeric_limits<float>::max();
+  float out_min = std::min(step(0, kNone, previous[1]), step(labels - 1, previous[labels - 2], kNone));
+#pragma omp simd reduction(min : out_min)
+  for (int d = 1; d < labels - 1; ++d) out_min = std::min(out_min, step(d, previous[d - 1], previous[d + 1]));
   return out_min;
 }
 
@@ -108,6 +110,7 @@ CostVolume AggregateSemiGlobal(const CostVolume& cost, const cv::Mat& guide, con
   if (!(options.p1 >= 0.0f) || !(options.p2 >= options.p1) || !(options.edge_sigma > 0.0f)) {
     throw Error("semi-global aggregation: need 0 <= p1 <= p2 and edge_sigma > 0");
   }
+  if (cost.labels() < 2) throw Error("semi-global aggregation: needs at least 2 disparity labels");
   const PenaltyModel penalties(guide, options);
   CostVolume sum(cost.width(), cost.height(), cost.labels(), 0.0f);
   constexpr int kDirections[SemiGlobalPaths()][2] = {{1, 0}, {-1, 0},  {0, 1},  {0, -1},

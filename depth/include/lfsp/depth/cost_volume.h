@@ -126,15 +126,15 @@ struct OcclusionAlternatives {
 };
 
 // Photo-consistency cost of every centre-view pixel at every label, computed view by view and tile by tile from
-// one interleaved copy of the views' features (RGB, and the detail image when the detail term has weight; the centre
-// view's blurred too for the noise-matched sampler): each non-centre view is resampled at the
-// sub-pixel shift the label predicts (CostOptions::sampler) and compared with the centre view (see CostOptions).
-// Views are accumulated per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular
-// patch on one side of its edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge
-// orientation), or the views along the edge. Without `alternatives` (nullptr) the cheapest of the whole patch and
-// these is returned; with it, the returned volume is the whole patch's cost and the partial patches' costs go to
-// `alternatives` (EstimateDepth admits them pixel by pixel: occlusion_alternatives.h). Without `occlusion` (nullptr)
-// every pixel averages all views. The light field must be RGB (3 channels).
+// one copy of the views' features, planar by rows (RGB, and the detail image when the detail term has weight; the
+// centre view's blurred too for the noise-matched sampler): each non-centre view is resampled at the sub-pixel shift
+// the label predicts (CostOptions::sampler) and compared with the centre view (see CostOptions). Views are accumulated
+// per angular sector, so a pixel flagged by `occlusion` can use only the half of the angular patch on one side of its
+// edge (the cheaper half: Wang et al.'s split, chosen from the centre view's edge orientation), or the views along the
+// edge. Without `alternatives` (nullptr) the cheapest of the whole patch and these is returned; with it, the returned
+// volume is the whole patch's cost and the partial patches' costs go to `alternatives` (EstimateDepth admits them pixel
+// by pixel: occlusion_alternatives.h). Without `occlusion` (nullptr) every pixel averages all views. The light field
+// must be RGB (3 channels).
 CostVolume BuildCostVolume(const LightField& light_field, const std::vector<float>& disparities,
                            const CostOptions& options, const OcclusionMap* occlusion,
                            OcclusionAlternatives* alternatives = nullptr);
