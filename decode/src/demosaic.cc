@@ -123,7 +123,7 @@ class EdgeWindow {
   // on both sides of q across the pair's direction where both are under the lens (exact for a texture that varies
   // along the pair only, at any fineness, as beside a boundary across the pair); else the mean of K(p) and K two
   // pixels in (exact only for a linear signal).
-  std::optional<float> OneSided(int dy, int dx) const {
+  [[gnu::always_inline]] std::optional<float> OneSided(int dy, int dx) const {
     const bool ahead = Inside(dy, dx), behind = Inside(-dy, -dx);
     if (!ahead && !behind) return std::nullopt;
     const int s = ahead ? 1 : -1, qy = s * dy, qx = s * dx;
@@ -136,7 +136,7 @@ class EdgeWindow {
 
   // The mean of the complete pairs' means; without a complete pair, the mean of the one-sided estimates; with no
   // neighbour under the lens, the plain mean of all of them.
-  float Mean(std::initializer_list<std::pair<int, int>> directions) const {
+  [[gnu::always_inline]] float Mean(std::initializer_list<std::pair<int, int>> directions) const {
     float complete = 0.0f, one_sided = 0.0f, all = 0.0f;
     int complete_count = 0, one_sided_count = 0;
     for (const auto& [dy, dx] : directions) {
