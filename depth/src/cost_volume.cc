@@ -239,15 +239,20 @@ void StorePlanar(const std::vector<cv::Mat>& sources, float* view, const LightFi
 }
 
 // The centre view's features as the noise-matched sampler compares them: blurred by kNoiseMatchedCentreKernel.
+// Filtered interleaved, as a `channels`-channel image: OpenCV's filters round a single-channel image's last columns
+// differently, so planes filtered one by one would change the costs in the last bits.
 std::vector<float> NoiseMatchedCentre(const FeatureImages& features, const LightFieldShape& shape) {
-  std::vector<float> blurred(shape.ViewPixels() * static_cast<std::size_t>(features.channels));
+  const int channels = features.channels;
+  const float* centre = features.View(shape, shape.Centre());
+  std::vector<cv::Mat> planes;
+  for (int c = 0; c < channels; ++c) planes.push_back(PlanarChannel(centre, shape, channels, c));
+  cv::Mat interleaved;
+  cv::merge(planes, interleaved);
   const cv::Mat kernel(3, 1, CV_32F, const_cast<float*>(kNoiseMatchedCentreKernel.data()));
-  for (int c = 0; c < features.channels; ++c) {
-    const cv::Mat source = PlanarChannel(features.View(shape, shape.Centre()), shape, features.channels, c);
-    cv::Mat target = PlanarChannel(blurred.data(), shape, features.channels, c);
-    // Replicated borders, as the resampled views clamp their taps.
-    cv::sepFilter2D(source, target, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-  }
+  // Replicated borders, as the resampled views clamp their taps.
+  cv::sepFilter2D(interleaved, interleaved, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  std::vector<float> blurred(shape.ViewPixels() * static_cast<std::size_t>(channels));
+  StorePlanar({interleaved}, blurred.data(), shape, channels);
   return blurred;
 }
 
