@@ -59,6 +59,11 @@ struct Accumulator {
 struct LinearTaps {
   std::vector<int> column0, column1;
   std::vector<float> a0, a1;
+  // Columns [interior_begin, interior_end) have both taps inside the view: column0 = x + offset_x, column1 =
+  // column0 + 1, a0 = 1 - fx, a1 = fx.
+  int offset_x = 0;
+  int interior_begin = 0;
+  int interior_end = 0;
   int offset_y = 0;
   float fy = 0.0f;
 };
@@ -69,6 +74,9 @@ LinearTaps MakeLinearTaps(int width, ImageShift shift) {
   const int offset_x = static_cast<int>(std::floor(source_x));
   const float fx = static_cast<float>(source_x - offset_x);
   LinearTaps taps;
+  taps.offset_x = offset_x;
+  taps.interior_begin = std::clamp(-offset_x, 0, width);
+  taps.interior_end = std::clamp(width - 1 - offset_x, taps.interior_begin, width);
   taps.offset_y = static_cast<int>(std::floor(source_y));
   taps.fy = static_cast<float>(source_y - taps.offset_y);
   const auto size = static_cast<std::size_t>(width);
@@ -85,6 +93,65 @@ LinearTaps MakeLinearTaps(int width, ImageShift shift) {
     taps.a1[k] = i0 + 1 >= 0 && i0 + 1 < width ? fx : 0.0f;
   }
   return taps;
+}
+
+// The columns of one output row whose taps all lie inside the view (LinearTaps' interior), as AccumulateRowsLinear
+// adds them but without the per-column tables, in chunks of columns: first the four tap weights of each column, then
+// the weighted samples over the chunk's interleaved samples as one contiguous run, so both loops vectorise (AVX2 and
+// generic builds, chosen at run time). A chunk with a column whose weights are all zero (a ray outside its lens) is
+// added column by column, skipping that column as the per-column form does, so every float is that form's.
+template <int channels>
+__attribute__((target_clones("avx2", "default"))) void AccumulateInterior(
+    const float* __restrict p0, const float* __restrict p1, const float* __restrict q0, const float* __restrict q1,
+    float b0, float b1, const LinearTaps& taps, float* __restrict s, float* __restrict t) {
+  if (taps.interior_begin >= taps.interior_end) return;
+  const float a0 = taps.a0[static_cast<std::size_t>(taps.interior_begin)];
+  const float a1 = taps.a1[static_cast<std::size_t>(taps.interior_begin)];
+  const int ox = taps.offset_x;
+  constexpr int kChunk = 64;
+  alignas(32) float weight[4][kChunk * channels];  // per sample of the chunk: its column's four tap weights
+  for (int first = taps.interior_begin; first < taps.interior_end; first += kChunk) {
+    const int count = std::min(kChunk, taps.interior_end - first);
+    bool every_column_adds = true;
+    for (int j = 0; j < count; ++j) {
+      const int c0 = first + j + ox;
+      float w00 = b0 * a0;
+      float w01 = b0 * a1;
+      float w10 = b1 * a0;
+      float w11 = b1 * a1;
+      if (q0 != nullptr) {
+        w00 *= q0[c0];
+        w01 *= q0[c0 + 1];
+        w10 *= q1[c0];
+        w11 *= q1[c0 + 1];
+      }
+      const float w = w00 + w01 + w10 + w11;
+      every_column_adds = every_column_adds && w > 0.0f;
+      if (w > 0.0f) t[first + j] += w;
+      for (int c = 0; c < channels; ++c) {
+        weight[0][j * channels + c] = w00;
+        weight[1][j * channels + c] = w01;
+        weight[2][j * channels + c] = w10;
+        weight[3][j * channels + c] = w11;
+      }
+    }
+    const float* r0 = p0 + static_cast<std::ptrdiff_t>(first + ox) * channels;
+    const float* r1 = p1 + static_cast<std::ptrdiff_t>(first + ox) * channels;
+    float* sums = s + static_cast<std::ptrdiff_t>(first) * channels;
+    const auto add = [&](int i) {
+      sums[i] += weight[0][i] * r0[i] + weight[1][i] * r0[i + channels] + weight[2][i] * r1[i] +
+                 weight[3][i] * r1[i + channels];
+    };
+    if (every_column_adds) {
+      for (int i = 0; i < count * channels; ++i) add(i);
+      continue;
+    }
+    for (int j = 0; j < count; ++j) {
+      const int i = j * channels;
+      if (weight[0][i] + weight[1][i] + weight[2][i] + weight[3][i] > 0.0f)
+        for (int c = 0; c < channels; ++c) add(i + c);
+    }
+  }
 }
 
 // Adds rows [y_begin, y_end) of one translated view to the accumulator in a single pass (no translated copy of the
@@ -114,7 +181,7 @@ void AccumulateRowsLinear(const float* samples, const float* weights, const Ligh
     const float* q1 = weights == nullptr ? nullptr : weights + static_cast<std::size_t>(row1) * width;
     float* s = accumulator.sum.ptr<float>(y);
     float* t = accumulator.total.ptr<float>(y);
-    for (int x = 0; x < width; ++x) {
+    const auto column = [&](int x) {
       const auto k = static_cast<std::size_t>(x);
       const int c0 = taps.column0[k];
       const int c1 = taps.column1[k];
@@ -129,7 +196,7 @@ void AccumulateRowsLinear(const float* samples, const float* weights, const Ligh
         w11 *= q1[c1];
       }
       const float w = w00 + w01 + w10 + w11;
-      if (w <= 0.0f) continue;
+      if (w <= 0.0f) return;
       t[x] += w;
       const float* s00 = p0 + c0 * channels;
       const float* s01 = p0 + c1 * channels;
@@ -137,7 +204,10 @@ void AccumulateRowsLinear(const float* samples, const float* weights, const Ligh
       const float* s11 = p1 + c1 * channels;
       for (int c = 0; c < channels; ++c)
         s[x * channels + c] += w00 * s00[c] + w01 * s01[c] + w10 * s10[c] + w11 * s11[c];
-    }
+    };
+    for (int x = 0; x < taps.interior_begin; ++x) column(x);
+    AccumulateInterior<channels>(p0, p1, q0, q1, b0, b1, taps, s, t);
+    for (int x = taps.interior_end; x < width; ++x) column(x);
   }
 }
 
