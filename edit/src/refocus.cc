@@ -126,8 +126,9 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateInterior(
         w11 *= q1[c0 + 1];
       }
       const float w = w00 + w01 + w10 + w11;
-      every_column_adds = every_column_adds && w > 0.0f;
-      if (w > 0.0f) t[first + j] += w;
+      const bool adds = !(w <= 0.0f);  // as the per-column form: a NaN weight adds
+      every_column_adds = every_column_adds && adds;
+      if (adds) t[first + j] += w;
       for (int c = 0; c < channels; ++c) {
         weight[0][j * channels + c] = w00;
         weight[1][j * channels + c] = w01;
@@ -148,7 +149,7 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateInterior(
     }
     for (int j = 0; j < count; ++j) {
       const int i = j * channels;
-      if (weight[0][i] + weight[1][i] + weight[2][i] + weight[3][i] > 0.0f)
+      if (!(weight[0][i] + weight[1][i] + weight[2][i] + weight[3][i] <= 0.0f))
         for (int c = 0; c < channels; ++c) add(i + c);
     }
   }
