@@ -30,10 +30,6 @@ int RequireCount(const nlohmann::json& json, const char* key, const std::string&
   return *value;
 }
 
-}  // namespace
-
-namespace {
-
 // One row of LensLabels: Nearest() per pixel, with the lattice coordinates stepped along the row. Built twice (AVX2
 // and generic) and chosen at run time: with SSE4.1 and later, floor and nearbyint are single instructions instead of
 // library calls, which were most of the time.

@@ -13,7 +13,8 @@ namespace {
 
 // One step along a path: out[d] = cost[d] + min(prev[d], prev[d±1] + p1, min(prev) + p2) - min(prev).
 // Returns min(out) for the next step. The first and last labels (one neighbour each) are taken apart so the labels
-// between run as one vectorised loop; the minimum is exact in any order, so the result does not depend on it.
+// between run as one vectorised loop. The minimum starts from FLT_MAX and takes a value only when it is smaller, as
+// the loop it replaced did, so a NaN cost never becomes it; over the other values it is exact in any order.
 __attribute__((target_clones("avx2", "default"))) float PathStep(const float* __restrict cost,
                                                                  const float* __restrict previous, float previous_min,
                                                                  float p1, float p2, int labels, float* __restrict out,
@@ -26,7 +27,7 @@ __attribute__((target_clones("avx2", "default"))) float PathStep(const float* __
     return out[d];
   };
   constexpr float kNone = std::numeric_limits<float>::max();
-  float out_min = std::min(step(0, kNone, previous[1]), step(labels - 1, previous[labels - 2], kNone));
+  float out_min = std::min(std::min(kNone, step(0, kNone, previous[1])), step(labels - 1, previous[labels - 2], kNone));
 #pragma omp simd reduction(min : out_min)
   for (int d = 1; d < labels - 1; ++d) out_min = std::min(out_min, step(d, previous[d - 1], previous[d + 1]));
   return out_min;

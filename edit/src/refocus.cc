@@ -75,8 +75,10 @@ LinearTaps MakeLinearTaps(int width, ImageShift shift) {
   const float fx = static_cast<float>(source_x - offset_x);
   LinearTaps taps;
   taps.offset_x = offset_x;
-  taps.interior_begin = std::clamp(-offset_x, 0, width);
-  taps.interior_end = std::clamp(width - 1 - offset_x, taps.interior_begin, width);
+  // In 64 bits: a shift near the int range's end (a finite but absurd disparity) must not overflow.
+  const long long first_inside = std::clamp(-static_cast<long long>(offset_x), 0LL, static_cast<long long>(width));
+  taps.interior_begin = static_cast<int>(first_inside);
+  taps.interior_end = static_cast<int>(std::clamp(width - 1LL - offset_x, first_inside, static_cast<long long>(width)));
   taps.offset_y = static_cast<int>(std::floor(source_y));
   taps.fy = static_cast<float>(source_y - taps.offset_y);
   const auto size = static_cast<std::size_t>(width);
@@ -98,8 +100,9 @@ LinearTaps MakeLinearTaps(int width, ImageShift shift) {
 // The columns of one output row whose taps all lie inside the view (LinearTaps' interior), as AccumulateRowsLinear
 // adds them but without the per-column tables, in chunks of columns: first the four tap weights of each column, then
 // the weighted samples over the chunk's interleaved samples as one contiguous run, so both loops vectorise (AVX2 and
-// generic builds, chosen at run time). A chunk with a column whose weights are all zero (a ray outside its lens) is
-// added column by column, skipping that column as the per-column form does, so every float is that form's.
+// generic builds, chosen at run time). A chunk with a column whose weights sum to zero or less (a ray outside its lens)
+// is added column by column, skipping that column as the per-column form does (a NaN sum adds, there as here), so
+// every float is that form's.
 template <int channels>
 __attribute__((target_clones("avx2", "default"))) void AccumulateInterior(
     const float* __restrict p0, const float* __restrict p1, const float* __restrict q0, const float* __restrict q1,

@@ -26,7 +26,7 @@ struct SgmOptions {
 SgmOptions PenaltiesForCost(const SgmOptions& options, const CostOptions& cost);
 
 // Returns the sum over the directions of the path costs, the same shape as `cost`. `guide` is the CV_32FC3 centre
-// view of the cost volume's size.
+// view of the cost volume's size; the volume needs at least 2 labels (lfsp::Error otherwise).
 CostVolume AggregateSemiGlobal(const CostVolume& cost, const cv::Mat& guide, const SgmOptions& options);
 
 // How many scanline directions AggregateSemiGlobal sums: each data cost appears that many times in its output.
