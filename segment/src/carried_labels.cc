@@ -6,8 +6,8 @@
 #include <string>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/rounding.h"
 #include "lfsp/segment/metrics.h"
-#include "rounding.h"
 #include "warp.h"
 
 namespace lfsp::segment {

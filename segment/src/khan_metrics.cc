@@ -11,8 +11,8 @@
 #include <unordered_map>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/rounding.h"
 #include "lfsp/segment/metrics.h"
-#include "rounding.h"
 
 namespace lfsp::segment {
 namespace {

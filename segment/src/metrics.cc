@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "lfsp/core/error.h"
-#include "rounding.h"
+#include "lfsp/core/rounding.h"
 #include "warp.h"
 
 namespace lfsp::segment {

@@ -1,6 +1,7 @@
 #include "refine.h"
 
 #include "lfsp/core/progress.h"
+#include "lfsp/core/rounding.h"
 #include "lfsp/core/stopwatch.h"
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 #include <opencv2/core/mat.hpp>
 #include "label_block.h"
 #include "planes.h"
-#include "rounding.h"
 
 namespace lfsp::segment {
 namespace {

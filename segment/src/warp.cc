@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "rounding.h"
+#include "lfsp/core/rounding.h"
 
 namespace lfsp::segment {
 

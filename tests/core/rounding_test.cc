@@ -1,5 +1,6 @@
-// Unit tests of segment/src/rounding.h: RoundHalfAway must round every double as std::lround does, since the
-// refinement rounds plane disparities with it and a different rounding would move labels.
+// Unit tests of lfsp/core/rounding.h: RoundHalfAway must round every double as std::lround does, since LFSP's
+// refinement rounds plane disparities with it (a different rounding would move labels) and the white image estimated
+// from a capture rounds its samples with it.
 
 #include <gtest/gtest.h>
 
@@ -7,9 +8,9 @@
 #include <limits>
 #include <random>
 
-#include "rounding.h"
+#include "lfsp/core/rounding.h"
 
-namespace lfsp::segment {
+namespace lfsp {
 namespace {
 
 TEST(RoundHalfAway, AgreesWithLroundOnHalvesAndTheirNeighbours) {
@@ -40,4 +41,4 @@ TEST(RoundHalfAway, ValuesBeyondAnyImageGiveTheSmallestInt) {
 }
 
 }  // namespace
-}  // namespace lfsp::segment
+}  // namespace lfsp
