@@ -36,6 +36,7 @@
 #include "bayer_preprocess.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/ordered_reduction.h"
+#include "lfsp/core/rounding.h"
 #include "lfsp/decode/lenslet_decoder.h"
 
 namespace lfsp::decode {
@@ -96,7 +97,7 @@ struct ProfileAccumulator {
   }
 };
 
-float Bilinear(const cv::Mat& profile, double fx, double fy) {
+[[gnu::always_inline]] inline float Bilinear(const cv::Mat& profile, double fx, double fy) {
   const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
   if (x0 < 0 || y0 < 0 || x0 + 1 >= profile.cols || y0 + 1 >= profile.rows) return 0.0f;
   const auto ax = static_cast<float>(fx - x0), ay = static_cast<float>(fy - y0);
@@ -107,9 +108,12 @@ float Bilinear(const cv::Mat& profile, double fx, double fy) {
 
 // Adds one lens's micro-image; false (nothing added) when it is clipped, off the sensor or has an empty phase. The
 // lens's brightness per Bayer phase is its core's least-squares scale of `first_pass` (a profile on the
-// accumulator's bins), or the core's plain mean without one.
-bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double core, int tile,
-             const cv::Mat* first_pass, ProfileAccumulator& accumulator) {
+// accumulator's bins), or the core's plain mean without one. Built twice (AVX2 and generic) and chosen at run time:
+// with SSE4.1 and later the profile lookup's floor is an instruction instead of a library call.
+__attribute__((target_clones("avx2", "default"))) bool AddLens(const cv::Mat& levelled, double cx, double cy,
+                                                               double reach, double core, int tile,
+                                                               const cv::Mat* first_pass,
+                                                               ProfileAccumulator& accumulator) {
   const int x0 = static_cast<int>(std::floor(cx - reach)), x1 = static_cast<int>(std::ceil(cx + reach));
   const int y0 = static_cast<int>(std::floor(cy - reach)), y1 = static_cast<int>(std::ceil(cy + reach));
   if (x0 < 0 || y0 < 0 || x1 >= levelled.cols || y1 >= levelled.rows) return false;
@@ -140,8 +144,8 @@ bool AddLens(const cv::Mat& levelled, double cx, double cy, double reach, double
     for (int x = x0; x <= x1; ++x) {
       const double dx = x - cx, dy = y - cy;
       if (dx * dx + dy * dy > reach * reach) continue;
-      const int bx = static_cast<int>(std::lround(dx / kBinPixels + half));
-      const int by = static_cast<int>(std::lround(dy / kBinPixels + half));
+      const int bx = RoundHalfAway(dx / kBinPixels + half);
+      const int by = RoundHalfAway(dy / kBinPixels + half);
       if (bx < 0 || by < 0 || bx >= accumulator.bins || by >= accumulator.bins) continue;
       const std::size_t n = accumulator.Index(tile, by, bx);
       // Sums, not a mean of ratios: a dim lens beside a bright one (whose light reaches the cell's edge) would
@@ -253,6 +257,47 @@ std::vector<cv::Mat> GainProfiles(std::vector<cv::Mat> profiles) {
   return profiles;
 }
 
+// One patch [x0, x1) x [y0, y1) of the synthesised white image: each pixel takes `profile` (on the accumulator's
+// bins, `half` its centre bin) at its offset from the nearest lens, as LensLabels finds it (lattice coordinates
+// stepped along rows), scaled to the phase's raw levels. Built twice (AVX2 and generic) and chosen at run time: with
+// SSE4.1 and later floor and nearbyint are instructions instead of library calls; the rounding is RoundHalfAway's
+// (std::lround's, without the call).
+__attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const cv::Mat& profile, const LensletGrid& grid,
+                                                                       double half,
+                                                                       const std::array<float, 4>& phase_black,
+                                                                       const std::array<float, 4>& phase_scale, int x0,
+                                                                       int x1, int y0, int y1, RawImage& white) {
+  const double c = std::cos(grid.rotation), sn = std::sin(grid.rotation);
+  const double along_step = c / grid.spacing_x, across_step = -sn / grid.spacing_y;
+  for (int y = y0; y < y1; ++y) {
+    std::uint16_t* out = white.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(white.width);
+    const double dy = y - grid.origin_y, dx = x0 - grid.origin_x;
+    double along = (c * dx + sn * dy) / grid.spacing_x;
+    double across = (-sn * dx + c * dy) / grid.spacing_y;
+    for (int x = x0; x < x1; ++x, along += along_step, across += across_step) {
+      // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
+      const int j0 = static_cast<int>(std::floor(across));
+      double best = 1e300, offset_along = 0.0, offset_across = 0.0;
+      for (int j = j0; j <= j0 + 1; ++j) {
+        const double shift = 0.5 * grid.Shift(j);
+        const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
+        const double eb = (across - j) * grid.spacing_y;
+        if (ea * ea + eb * eb < best) {
+          best = ea * ea + eb * eb;
+          offset_along = ea;
+          offset_across = eb;
+        }
+      }
+      const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
+      const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
+      const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
+      const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
+      out[x] = static_cast<std::uint16_t>(
+          std::clamp(RoundHalfAway(phase_black[phase] + value * phase_scale[phase]), 0, 65535));
+    }
+  }
+}
+
 }  // namespace
 
 RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata, const LensletGrid& grid,
@@ -323,11 +368,9 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
   white.pixels.resize(white.PixelCount());
   const double half = 0.5 * (bins - 1);
   // The tile profiles blended once per patch of the sensor (the blend changes over a tile, ~1500 px), then one
-  // lookup per pixel; the nearest lens of each pixel as LensLabels finds it, lattice coordinates stepped along rows.
+  // lookup per pixel (SynthesisePatch).
   constexpr int kPatch = 128;
   const int patches_x = (white.width + kPatch - 1) / kPatch, patches_y = (white.height + kPatch - 1) / kPatch;
-  const double c = std::cos(grid.rotation), sn = std::sin(grid.rotation);
-  const double along_step = c / grid.spacing_x, across_step = -sn / grid.spacing_y;
   std::array<float, 4> phase_scale{}, phase_black{};
   for (std::size_t phase = 0; phase < 4; ++phase) {
     phase_scale[phase] = static_cast<float>(kWhiteLevel * response[phase] / levels.scale[phase]);
@@ -351,33 +394,7 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
     };
     cv::Mat profile = (1 - ay) * (1 - ax) * tile(ty0, tx0) + (1 - ay) * ax * tile(ty0, tx1) +
                       ay * (1 - ax) * tile(ty1, tx0) + ay * ax * tile(ty1, tx1);
-    for (int y = y0; y < y1; ++y) {
-      std::uint16_t* out = white.pixels.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(white.width);
-      const double dy = y - grid.origin_y, dx = x0 - grid.origin_x;
-      double along = (c * dx + sn * dy) / grid.spacing_x;
-      double across = (-sn * dx + c * dy) / grid.spacing_y;
-      for (int x = x0; x < x1; ++x, along += along_step, across += across_step) {
-        // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
-        const int j0 = static_cast<int>(std::floor(across));
-        double best = 1e300, offset_along = 0.0, offset_across = 0.0;
-        for (int j = j0; j <= j0 + 1; ++j) {
-          const double shift = 0.5 * grid.Shift(j);
-          const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
-          const double eb = (across - j) * grid.spacing_y;
-          if (ea * ea + eb * eb < best) {
-            best = ea * ea + eb * eb;
-            offset_along = ea;
-            offset_across = eb;
-          }
-        }
-        const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
-        const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
-        const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
-        const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
-        out[x] = static_cast<std::uint16_t>(
-            std::clamp(std::lround(phase_black[phase] + value * phase_scale[phase]), 0L, 65535L));
-      }
-    }
+    SynthesisePatch(profile, grid, half, phase_black, phase_scale, x0, x1, y0, y1, white);
   }
   if (report) {
     report->lenses = static_cast<int>(lenses);
