@@ -292,8 +292,10 @@ __attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const cv:
       const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
       const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
       const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
-      out[x] = static_cast<std::uint16_t>(
-          std::clamp(RoundHalfAway(phase_black[phase] + value * phase_scale[phase]), 0, 65535));
+      // RoundHalfAway answers the smallest int beyond +-2e9, where lround's clamp gave 65535 above (levels that
+      // hostile metadata can make): those clamp first.
+      const float level = std::min(phase_black[phase] + value * phase_scale[phase], 65535.0f);
+      out[x] = static_cast<std::uint16_t>(std::clamp(RoundHalfAway(level), 0, 65535));
     }
   }
 }
