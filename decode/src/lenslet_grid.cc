@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "bayer_levels.h"
+#include "lattice.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/json_fields.h"
 #include "lfsp/core/ordered_reduction.h"
@@ -30,28 +31,16 @@ int RequireCount(const nlohmann::json& json, const char* key, const std::string&
   return *value;
 }
 
-// One row of LensLabels: Nearest() per pixel, with the lattice coordinates stepped along the row. Built twice (AVX2
-// and generic) and chosen at run time: with SSE4.1 and later, floor and nearbyint are single instructions instead of
-// library calls, which were most of the time.
+// One row of LensLabels: the nearest lens of each pixel (NearestLensAt), the lattice coordinates stepped along the row.
+// Built twice (AVX2 and generic) and chosen at run time: with SSE4.1 and later, floor and nearbyint are single
+// instructions instead of library calls, which were most of the time.
 __attribute__((target_clones("avx2", "default"))) void LensLabelsRow(const LensletGrid& grid, double along,
                                                                      double across, double along_step,
                                                                      double across_step, std::uint8_t* row,
                                                                      int columns) {
   for (int x = 0; x < columns; ++x, along += along_step, across += across_step) {
-    const int j0 = static_cast<int>(std::floor(across));
-    int best_i = 0, best_j = j0;
-    double best = std::numeric_limits<double>::max();
-    for (int j = j0; j <= j0 + 1; ++j) {
-      const double shift = 0.5 * grid.Shift(j);
-      const double i = std::nearbyint(along - shift);
-      const double ea = (along - i - shift) * grid.spacing_x, eb = (across - j) * grid.spacing_y;
-      if (ea * ea + eb * eb < best) {
-        best = ea * ea + eb * eb;
-        best_i = static_cast<int>(i);
-        best_j = j;
-      }
-    }
-    row[x] = static_cast<std::uint8_t>((best_i & 3) + 4 * (best_j & 1));
+    const NearestLens nearest = NearestLensAt(grid, along, across);
+    row[x] = static_cast<std::uint8_t>((nearest.i & 3) + 4 * (nearest.j & 1));
   }
 }
 

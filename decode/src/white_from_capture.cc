@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bayer_preprocess.h"
+#include "lattice.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/ordered_reduction.h"
 #include "lfsp/core/rounding.h"
@@ -258,7 +259,7 @@ std::vector<cv::Mat> GainProfiles(std::vector<cv::Mat> profiles) {
 }
 
 // One patch [x0, x1) x [y0, y1) of the synthesised white image: each pixel takes `profile` (on the accumulator's
-// bins, `half` its centre bin) at its offset from the nearest lens, as LensLabels finds it (lattice coordinates
+// bins, `half` its centre bin) at its offset from the nearest lens (NearestLensAt, as LensLabels; lattice coordinates
 // stepped along rows), scaled to the phase's raw levels. Built twice (AVX2 and generic) and chosen at run time: with
 // SSE4.1 and later floor and nearbyint are instructions instead of library calls; the rounding is RoundHalfAway's
 // (std::lround's, without the call).
@@ -276,18 +277,8 @@ __attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const cv:
     double across = (-sn * dx + c * dy) / grid.spacing_y;
     for (int x = x0; x < x1; ++x, along += along_step, across += across_step) {
       // Offset from the nearest lens centre, in the lattice frame (px), then on the sensor.
-      const int j0 = static_cast<int>(std::floor(across));
-      double best = 1e300, offset_along = 0.0, offset_across = 0.0;
-      for (int j = j0; j <= j0 + 1; ++j) {
-        const double shift = 0.5 * grid.Shift(j);
-        const double ea = (along - std::nearbyint(along - shift) - shift) * grid.spacing_x;
-        const double eb = (across - j) * grid.spacing_y;
-        if (ea * ea + eb * eb < best) {
-          best = ea * ea + eb * eb;
-          offset_along = ea;
-          offset_across = eb;
-        }
-      }
+      const NearestLens nearest = NearestLensAt(grid, along, across);
+      const double offset_along = nearest.offset_along, offset_across = nearest.offset_across;
       const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
       const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
       const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
