@@ -24,6 +24,11 @@
 namespace lfsp {
 namespace {
 
+// zlib level of every PNG written. OpenImageIO's default is 6; level 1 wrote the pipeline's focal stack of a full
+// Illum capture (five 622x432 slices) in 0.31-0.36 s instead of 0.51-0.55 s, with files 18 % larger and the same
+// pixels (BENCHMARKS.md, thirty-sixth session). OpenCV's PNG encoder, which the report uses, defaults to 1 as well.
+constexpr int kPngCompressionLevel = 1;
+
 OIIO::TypeDesc StorageType(int bit_depth) {
   switch (bit_depth) {
     case 8:
@@ -234,6 +239,7 @@ void WriteImage(const cv::Mat& image, const std::filesystem::path& path, int bit
     storage = OIIO::TypeDesc::UINT16;
   OIIO::ImageSpec spec(image.cols, image.rows, image.channels(), storage);
   for (const auto& [key, value] : text) spec.attribute(key, value);
+  spec.attribute("png:compressionLevel", kPngCompressionLevel);  // read by the PNG writer only
   if (!writer->open(output.temporary().string(), spec)) ThrowFileError(name, "cannot create: " + writer->geterror());
   const cv::Mat pixels = QuantisedForStorage(image, storage);
   if (!writer->write_image(MatType(pixels.depth()), pixels.data))
