@@ -16,6 +16,7 @@
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
 
+#include "lfsp/core/banded_filter.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
 
@@ -214,7 +215,7 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
       float* out = demodulated.ptr<float>(y);
       for (int x = 0; x < image.cols; ++x) out[x] = in[x] * CarrierSign(carrier, x, y);
     }
-    cv::GaussianBlur(demodulated, narrow, cv::Size(), narrow_sigma, narrow_sigma, cv::BORDER_REFLECT);
+    GaussianBlurInBands(demodulated, narrow, narrow_sigma, narrow_sigma, cv::BORDER_REFLECT);
     const cv::Mat wide = WideBlur(demodulated, wide_sigma);
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < image.rows; ++y) {
