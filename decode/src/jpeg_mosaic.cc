@@ -134,7 +134,7 @@ const DctRows kDctRows;
 // out = M in M^T (forward) or M^T in M (inverse), for one 8x8 block. Each output row is built as a whole row, the
 // terms added in the order of the plain sums (n = 0..7 from zero, a product and then a sum each), so every
 // coefficient and pixel is the float it would be written element by element.
-__attribute__((always_inline)) inline void Transform(const float in[64], float out[64], bool inverse) {
+inline void Transform(const float in[64], float out[64], bool inverse) {
   BlockRow rows[8], temp[8];
   for (int n = 0; n < 8; ++n) __builtin_memcpy(&rows[n], in + 8 * n, sizeof(BlockRow));
   // temp[r][c] = sum_n A[r][n] in[n][c], A = M (forward) or M^T (inverse).
@@ -151,56 +151,68 @@ __attribute__((always_inline)) inline void Transform(const float in[64], float o
   }
 }
 
-// Pixels (level-shifted by 128, as JPEG codes them) of every block from its dequantized coefficients.
-__attribute__((target_clones("avx2", "default"))) cv::Mat PlainDecode(const JpegCoefficients& coefficients) {
+// The pixels (level-shifted by 128, as JPEG codes them) of row `by` of blocks from their dequantized coefficients.
+// Built for AVX2 too, where Transform's eight-float rows are one register (Transform is inlined into each build).
+__attribute__((target_clones("avx2", "default"))) void DecodeRowOfBlocks(const JpegCoefficients& coefficients, int by,
+                                                                         cv::Mat& image) {
+  for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
+    const std::int16_t* block = coefficients.Block(bx, by);
+    float dequantized[64], pixels[64];
+    for (int k = 0; k < 64; ++k) dequantized[k] = static_cast<float>(block[k]) * coefficients.quant[k];
+    Transform(dequantized, pixels, true);
+    for (int r = 0; r < 8; ++r) {
+      float* row = image.ptr<float>(by * 8 + r) + bx * 8;
+      for (int c = 0; c < 8; ++c) row[c] = pixels[r * 8 + c] + 128.0f;
+    }
+  }
+}
+
+cv::Mat PlainDecode(const JpegCoefficients& coefficients) {
   cv::Mat image(coefficients.blocks_y * 8, coefficients.blocks_x * 8, CV_32FC1);
 #pragma omp parallel for schedule(static)
-  for (int by = 0; by < coefficients.blocks_y; ++by)
-    for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
-      const std::int16_t* block = coefficients.Block(bx, by);
-      float dequantized[64], pixels[64];
-      for (int k = 0; k < 64; ++k) dequantized[k] = static_cast<float>(block[k]) * coefficients.quant[k];
-      Transform(dequantized, pixels, true);
-      for (int r = 0; r < 8; ++r) {
-        float* row = image.ptr<float>(by * 8 + r) + bx * 8;
-        for (int c = 0; c < 8; ++c) row[c] = pixels[r * 8 + c] + 128.0f;
-      }
-    }
+  for (int by = 0; by < coefficients.blocks_y; ++by) DecodeRowOfBlocks(coefficients, by, image);
   return image;
+}
+
+// ProjectOntoData for row `by` of blocks; returns how far its coefficients moved, summed over the row in order, when
+// `measure` asks for it (0 otherwise). Built for AVX2 too, as DecodeRowOfBlocks.
+__attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(const JpegCoefficients& coefficients,
+                                                                            int by, cv::Mat& image, bool measure) {
+  double moved = 0.0;
+  for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
+    const std::int16_t* block = coefficients.Block(bx, by);
+    float pixels[64], dct[64];
+    for (int r = 0; r < 8; ++r) {
+      const float* row = image.ptr<float>(by * 8 + r) + bx * 8;
+      for (int c = 0; c < 8; ++c) pixels[r * 8 + c] = row[c] - 128.0f;
+    }
+    Transform(pixels, dct, false);
+    float clamped[64];
+    for (int k = 0; k < 64; ++k) {
+      const float q = coefficients.quant[k], centre = static_cast<float>(block[k]) * q;
+      clamped[k] = std::clamp(dct[k], centre - 0.5f * q, centre + 0.5f * q);
+    }
+    if (measure)
+      for (int k = 0; k < 64; ++k) moved += std::abs(clamped[k] - dct[k]);
+    Transform(clamped, pixels, true);
+    for (int r = 0; r < 8; ++r) {
+      float* row = image.ptr<float>(by * 8 + r) + bx * 8;
+      for (int c = 0; c < 8; ++c) row[c] = std::clamp(pixels[r * 8 + c] + 128.0f, 0.0f, 255.0f);
+    }
+  }
+  return moved;
 }
 
 // Moves every block's coefficients back into the quantization bins the file records, and every pixel into the
 // 0..255 a decoder clamps to. Returns the mean distance the coefficients moved when `measure` asks for it (0
 // otherwise): summed in order in double precision, one chain of additions per row of blocks, that figure took most of
 // the step's time, and only the last round's is reported.
-__attribute__((target_clones("avx2", "default"))) double ProjectOntoData(const JpegCoefficients& coefficients,
-                                                                         cv::Mat& image, bool measure) {
+double ProjectOntoData(const JpegCoefficients& coefficients, cv::Mat& image, bool measure) {
   // Per row of blocks, then added in order: the figure does not depend on the threads.
   std::vector<double> moved_per_row(static_cast<std::size_t>(coefficients.blocks_y), 0.0);
 #pragma omp parallel for schedule(static)
   for (int by = 0; by < coefficients.blocks_y; ++by)
-    for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
-      double& moved = moved_per_row[static_cast<std::size_t>(by)];
-      const std::int16_t* block = coefficients.Block(bx, by);
-      float pixels[64], dct[64];
-      for (int r = 0; r < 8; ++r) {
-        const float* row = image.ptr<float>(by * 8 + r) + bx * 8;
-        for (int c = 0; c < 8; ++c) pixels[r * 8 + c] = row[c] - 128.0f;
-      }
-      Transform(pixels, dct, false);
-      float clamped[64];
-      for (int k = 0; k < 64; ++k) {
-        const float q = coefficients.quant[k], centre = static_cast<float>(block[k]) * q;
-        clamped[k] = std::clamp(dct[k], centre - 0.5f * q, centre + 0.5f * q);
-      }
-      if (measure)
-        for (int k = 0; k < 64; ++k) moved += std::abs(clamped[k] - dct[k]);
-      Transform(clamped, pixels, true);
-      for (int r = 0; r < 8; ++r) {
-        float* row = image.ptr<float>(by * 8 + r) + bx * 8;
-        for (int c = 0; c < 8; ++c) row[c] = std::clamp(pixels[r * 8 + c] + 128.0f, 0.0f, 255.0f);
-      }
-    }
+    moved_per_row[static_cast<std::size_t>(by)] = ProjectRowOfBlocks(coefficients, by, image, measure);
   double moved = 0.0;
   for (double row : moved_per_row) moved += row;
   return moved / static_cast<double>(coefficients.indices.size());
