@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -192,6 +193,57 @@ TEST(Hdf5Bundle, CompactBundlesReadBackWhatWasWritten) {
   const Bundle read = ReadBundle(exact);
   for (std::size_t i = 0; i < bundle.light_field.size(); ++i)
     ASSERT_EQ(read.light_field.data()[i], bundle.light_field.data()[i]);
+}
+
+// Views read from 8- or 16-bit images hold exact levels; CompactBundleOptions stores them as 8- or 16-bit integers,
+// and they must read back bit for bit. Anything that is not a level (an ulp off, NaN, -0, beyond 1) stays float32.
+TEST(Hdf5Bundle, CompactBundlesStoreExactLevelsAsIntegersAndReadThemBack) {
+  TempDir dir;
+  const auto bits_equal = [](const float* a, const float* b, std::size_t count) {
+    return std::memcmp(a, b, count * sizeof(float)) == 0;
+  };
+  const auto write_and_read = [&](const Bundle& bundle, const char* name) {
+    WriteBundle(bundle, dir / name, CompactBundleOptions(bundle.light_field));
+    return ReadBundle(dir / name);
+  };
+  Bundle bundle;
+  bundle.light_field = LightField(LightFieldShape{3, 3, 9, 11, 3});
+  const std::size_t count = bundle.light_field.size();
+  float* samples = bundle.light_field.data();
+  for (std::size_t i = 0; i < count; ++i) samples[i] = static_cast<float>((i * 37) % 256) / 255.0f;
+  EXPECT_EQ(CompactBundleOptions(bundle.light_field).storage, SampleStorage::kUint8);
+  Bundle read = write_and_read(bundle, "eight.h5");
+  EXPECT_TRUE(bits_equal(read.light_field.data(), samples, count));
+
+  for (std::size_t i = 0; i < count; ++i) samples[i] = static_cast<float>((i * 7919) % 65536) / 65535.0f;
+  EXPECT_EQ(CompactBundleOptions(bundle.light_field).storage, SampleStorage::kUint16);
+  read = write_and_read(bundle, "sixteen.h5");
+  EXPECT_TRUE(bits_equal(read.light_field.data(), samples, count));
+  // 16-bit samples take 16-bit weights beside them: exact weights keep the 16-bit storage, others make it float32.
+  bundle.light_field.EnableWeights();
+  float* weights = bundle.light_field.weights().data();
+  const std::size_t weight_count = bundle.light_field.weights().size();
+  for (std::size_t i = 0; i < weight_count; ++i) weights[i] = static_cast<float>(i % 65536) / 65535.0f;
+  EXPECT_EQ(CompactBundleOptions(bundle.light_field).storage, SampleStorage::kUint16);
+  read = write_and_read(bundle, "sixteen_weighted.h5");
+  EXPECT_TRUE(bits_equal(read.light_field.weights().data(), weights, weight_count));
+  weights[5] = 0.3f;
+  EXPECT_EQ(CompactBundleOptions(bundle.light_field).storage, SampleStorage::kFloat32);
+  read = write_and_read(bundle, "sixteen_inexact_weight.h5");
+  EXPECT_TRUE(bits_equal(read.light_field.weights().data(), weights, weight_count));
+  EXPECT_TRUE(bits_equal(read.light_field.data(), samples, count));
+
+  bundle.light_field = LightField(LightFieldShape{3, 3, 9, 11, 3});
+  samples = bundle.light_field.data();
+  for (const float odd :
+       {std::nextafter(128.0f / 255.0f, 1.0f), std::numeric_limits<float>::quiet_NaN(), -0.0f, 1.5f, -0.25f}) {
+    for (std::size_t i = 0; i < count; ++i) samples[i] = static_cast<float>(i % 256) / 255.0f;
+    samples[count / 2] = odd;
+    EXPECT_EQ(CompactBundleOptions(bundle.light_field).storage, SampleStorage::kFloat32) << odd;
+  }
+  samples[count / 2] = std::nextafter(128.0f / 255.0f, 1.0f);
+  read = write_and_read(bundle, "float.h5");
+  EXPECT_TRUE(bits_equal(read.light_field.data(), samples, count));
 }
 
 // Compressed bundles are inflated view by view in parallel (ReadViewChunks); a damaged chunk must still end in a

@@ -29,7 +29,8 @@ struct BundleWriteOptions {
 
 // What the commands write (decode, segment, recolor, pipeline): chunked by view, byte-shuffled and gzip-compressed
 // at level 1 (fast); samples as 16-bit when the light field was decoded from a sensor (10- or 12-bit data: a step
-// of 1.5e-5 loses nothing measurable), else as float32, losslessly.
+// of 1.5e-5 loses nothing measurable), else losslessly: as 8- or 16-bit when every sample (and, for 16-bit, every
+// weight) reads back bit for bit from its level, as views read from 8- or 16-bit images do, else as float32.
 BundleWriteOptions CompactBundleOptions(const LightField& light_field);
 
 // Rounds the samples (and weights, when they are stored alike) to the precision `storage` keeps, exactly as
