@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/ordered_reduction.h"
@@ -32,21 +33,61 @@ struct GreySums {
   long long usable = 0;
 };
 
-GreySums SumGreyPixels(const cv::Mat& rgb, const cv::Mat& grey_white, const std::array<double, 9>& ccm,
-                       const std::array<double, 3>& gains, float clip_level) {
-  constexpr int kStride = 2;  // every other row and column: the estimate is a mean over millions of pixels
+// The pixels every round weighs: on every other row and column (the estimate is a mean over millions of pixels),
+// lit by the white image, unclipped, no channel at or below zero. They do not depend on the gains, so they are
+// gathered once, row by row in the order the rounds add them, and the rounds (15-17 on the real F01 frames) read a
+// packed copy instead of two sensor-size images each: those reads, not the arithmetic, were the step's time.
+struct UsablePixels {
+  std::vector<float> rgb;              // three per pixel
+  std::vector<std::size_t> row_start;  // pixel index where each sampled row starts, and one past the last
+};
+
+UsablePixels GatherUsablePixels(const cv::Mat& rgb, const cv::Mat& grey_white, float clip_level) {
+  constexpr int kStride = 2;
   const int rows = (rgb.rows + kStride - 1) / kStride;
+  const auto usable = [&](const float* in, float white) {
+    return white >= 0.5f && std::max({in[0], in[1], in[2]}) < clip_level && std::min({in[0], in[1], in[2]}) > 0.0f;
+  };
+  UsablePixels pixels;
+  pixels.row_start.assign(static_cast<std::size_t>(rows) + 1, 0);
+#pragma omp parallel for schedule(static)
+  for (int item = 0; item < rows; ++item) {
+    const float* p = rgb.ptr<float>(item * kStride);
+    const float* w = grey_white.ptr<float>(item * kStride);
+    std::size_t count = 0;
+    for (int x = 0; x < rgb.cols; x += kStride) count += usable(p + 3 * x, w[x]) ? 1 : 0;
+    pixels.row_start[static_cast<std::size_t>(item) + 1] = count;
+  }
+  for (std::size_t i = 1; i < pixels.row_start.size(); ++i) pixels.row_start[i] += pixels.row_start[i - 1];
+  pixels.rgb.resize(3 * pixels.row_start.back());
+#pragma omp parallel for schedule(static)
+  for (int item = 0; item < rows; ++item) {
+    const float* p = rgb.ptr<float>(item * kStride);
+    const float* w = grey_white.ptr<float>(item * kStride);
+    float* out = pixels.rgb.data() + 3 * pixels.row_start[static_cast<std::size_t>(item)];
+    for (int x = 0; x < rgb.cols; x += kStride) {
+      const float* in = p + 3 * x;
+      if (!usable(in, w[x])) continue;
+      out[0] = in[0];
+      out[1] = in[1];
+      out[2] = in[2];
+      out += 3;
+    }
+  }
+  return pixels;
+}
+
+GreySums SumGreyPixels(const UsablePixels& pixels, const std::array<double, 9>& ccm,
+                       const std::array<double, 3>& gains) {
+  const int rows = static_cast<int>(pixels.row_start.size()) - 1;
   // Summed in a fixed order (OrderedParallelSum), so that the gains, and the decode, do not depend on the threads.
   return OrderedParallelSum(
       rows, [] { return GreySums{}; },
       [&](int item, GreySums& sums) {
-        const int y = item * kStride;
-        const float* p = rgb.ptr<float>(y);
-        const float* w = grey_white.ptr<float>(y);
-        for (int x = 0; x < rgb.cols; x += kStride) {
-          if (w[x] < 0.5f) continue;
-          const float* in = p + 3 * x;
-          if (std::max({in[0], in[1], in[2]}) >= clip_level || std::min({in[0], in[1], in[2]}) <= 0.0f) continue;
+        const std::size_t begin = pixels.row_start[static_cast<std::size_t>(item)];
+        const std::size_t end = pixels.row_start[static_cast<std::size_t>(item) + 1];
+        for (std::size_t i = begin; i < end; ++i) {
+          const float* in = pixels.rgb.data() + 3 * i;
           ++sums.usable;
           const double br = gains[0] * in[0], bg = gains[1] * in[1], bb = gains[2] * in[2];
           const double out_r = ccm[0] * br + ccm[1] * bg + ccm[2] * bb;
@@ -134,10 +175,10 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
   AutoWhiteBalanceReport& out = report ? *report : local;
   out = {};
   out.start = start;
-  const float clip_level = ClipLevel(rgb, grey_white);
+  const UsablePixels usable = GatherUsablePixels(rgb, grey_white, ClipLevel(rgb, grey_white));
   std::array<double, 3> gains = start;
   for (out.rounds = 1; out.rounds <= kMaxRounds; ++out.rounds) {
-    const GreySums sums = SumGreyPixels(rgb, grey_white, ccm, gains, clip_level);
+    const GreySums sums = SumGreyPixels(usable, ccm, gains);
     out.grey_fraction = sums.usable > 0 ? static_cast<double>(sums.grey) / static_cast<double>(sums.usable) : 0.0;
     if (out.grey_fraction < kMinGreyFraction || !(sums.sum[0] > 0) || !(sums.sum[2] > 0)) {
       out.kept_start = true;
