@@ -45,8 +45,10 @@ struct UsablePixels {
 UsablePixels GatherUsablePixels(const cv::Mat& rgb, const cv::Mat& grey_white, float clip_level) {
   constexpr int kStride = 2;
   const int rows = (rgb.rows + kStride - 1) / kStride;
+  // Written as the tests that skip a pixel, negated, so that a NaN decides as it always did.
   const auto usable = [&](const float* in, float white) {
-    return white >= 0.5f && std::max({in[0], in[1], in[2]}) < clip_level && std::min({in[0], in[1], in[2]}) > 0.0f;
+    return !(white < 0.5f) && !(std::max({in[0], in[1], in[2]}) >= clip_level) &&
+           !(std::min({in[0], in[1], in[2]}) <= 0.0f);
   };
   UsablePixels pixels;
   pixels.row_start.assign(static_cast<std::size_t>(rows) + 1, 0);
