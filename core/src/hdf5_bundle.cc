@@ -541,17 +541,13 @@ namespace {
 
 // Whether every value comes back bit for bit from the integer level WriteBundle stores it as (SampleLevel) and the
 // float ReadBundle makes of that level (level / full_scale): then that integer type holds the values losslessly.
-// The level is taken in float here, which vectorises (SampleLevel's double does not: 9 ns a sample): for a value
-// that is some level L over full_scale, value * full_scale lies within an ulp of L and both roundings give L; for any
-// other value no level reads back as it, whichever level is tried. NaN, values outside [0, 1] and -0 are not exact.
+// NaN, values outside [0, 1] and -0 are not exact.
 bool ExactAtLevels(const float* values, std::size_t count, float full_scale) {
   std::size_t inexact = 0;
-#pragma omp parallel for simd schedule(static) reduction(+ : inexact)
+#pragma omp parallel for schedule(static) reduction(+ : inexact)
   for (std::size_t i = 0; i < count; ++i) {
-    const float value = values[i];
-    const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;
-    const float back = static_cast<float>(static_cast<int>(clamped * full_scale + 0.5f)) / full_scale;
-    inexact += std::bit_cast<std::uint32_t>(back) != std::bit_cast<std::uint32_t>(value) ? 1 : 0;
+    const float back = static_cast<float>(SampleLevel(values[i], full_scale)) / full_scale;
+    inexact += std::bit_cast<std::uint32_t>(back) != std::bit_cast<std::uint32_t>(values[i]) ? 1 : 0;
   }
   return inexact == 0;
 }
