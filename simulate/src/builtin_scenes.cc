@@ -233,11 +233,34 @@ json CheckerboardScene() {
         Plane("board", 1, Rect(0.1f, 0.1f, 0.9f, 0.9f), 0.3f, Checker({0.95, 0.95, 0.95}, {0.05, 0.05, 0.05}, 0.1f))}}};
 }
 
+// The real F01 frames' colour bands (issue 49) need what two-horses lacks: large smooth surfaces whose green against
+// red and blue sits near the JPEG's quantization threshold at the frames' dark level, in a light bluer than the
+// camera's reference. The colours are chosen so that the mosaic's brighter half reads raw R/G 0.87, B/G 0.69 above
+// the black level at `--exposure 1.8` (the real IMG_3: 0.84, 0.76; the camera's white balance makes a grey surface
+// 1.12, 0.65), and a quarter of the 8x8 blocks keeps the (7,7) coefficient (IMG_3: a third). The third leaf is
+// purple-grey, as IMG_3's darker leaves read.
+json LeavesScene() {
+  const auto leaf = [](const std::string& name, int label, float cx, float cy, float radius, float disparity,
+                       const std::vector<double>& dark, const std::vector<double>& light, int seed) {
+    return Plane(name, label, {{"type", "disc"}, {"centre", {cx, cy}}, {"radius", radius}}, disparity,
+                 Noise(dark, light, 0.08f, seed));
+  };
+  return {{"name", "leaves"},
+          {"description",
+           "large smooth leaves in shade over dark ground: with --exposure 1.8 --mosaic-jpeg 75, the real F01 "
+           "frames' JPEG colour bands"},
+          {"objects",
+           {Background(-0.6f, Noise({0.03, 0.05, 0.062}, {0.10, 0.14, 0.186}, 0.02f, 3)),
+            leaf("leaf-bright", 1, 0.35f, 0.4f, 0.28f, 0.2f, {0.20, 0.45, 0.372}, {0.26, 0.55, 0.465}, 5),
+            leaf("leaf-dark", 2, 0.72f, 0.62f, 0.22f, 0.6f, {0.12, 0.26, 0.217}, {0.16, 0.32, 0.279}, 7),
+            leaf("leaf-purple", 3, 0.3f, 0.82f, 0.2f, -0.2f, {0.22, 0.20, 0.465}, {0.28, 0.26, 0.589}, 9)}}};
+}
+
 }  // namespace
 
 std::vector<std::string> BuiltinSceneNames() {
-  return {"planes",       "occluders", "two-horses", "spheres", "specular",
-          "checkerboard", "comb",      "layers",     "bars",    "sculpture"};
+  return {"planes", "occluders", "two-horses", "spheres",   "specular", "checkerboard",
+          "comb",   "layers",    "bars",       "sculpture", "leaves"};
 }
 
 Scene BuiltinScene(const std::string& name) {
@@ -262,6 +285,8 @@ Scene BuiltinScene(const std::string& name) {
     json_scene = BarsScene();
   else if (name == "sculpture")
     json_scene = SculptureScene();
+  else if (name == "leaves")
+    json_scene = LeavesScene();
   else {
     std::string list;
     for (const auto& n : BuiltinSceneNames()) list += (list.empty() ? "" : ", ") + n;

@@ -67,5 +67,34 @@ TEST(JpegCapture, RestorationRecoversPartOfWhatTheJpegTookAndAddsNoBands) {
   EXPECT_LT(plain.block_rows, 0.6);
 }
 
+// The simulator's `leaves` scene writes what two-horses does not: the real frames' bands. Its large smooth green
+// leaves sit, in a bluish light, where the JPEG keeps the (7,7) coefficient in some blocks and not in others, so the
+// blocks' beat against the lens rows stripes the colour as on the real IMG_3 (issue 49, item 1). The bands are in
+// the JPEG, not in the scene or the decoder: the lossless 8-bit mosaic decodes without them.
+TEST(JpegCapture, LeavesInShadeShowTheRealFramesBands) {
+  TempDir dir;
+  const auto simulated = RunLfsp({"-q", "simulate", "--camera", "f01", "--scene", "leaves", "--exposure", "1.8",
+                                  "--mosaic-jpeg", "75", "--no-white-images", "--out", (dir / "sim").string()});
+  ASSERT_EQ(simulated.exit_status, 0) << simulated.err;
+  const LightField truth = LoadLightField(dir / "sim" / "ground_truth" / "decoded.h5").light_field;
+  const Decoded lossless = DecodeAndScore(dir / "sim" / "capture_mosaic.png", dir / "png.h5", truth, "0");
+  const Decoded plain = DecodeAndScore(dir / "sim" / "capture_mosaic.jpg", dir / "plain.h5", truth, "0");
+  const Decoded restored = DecodeAndScore(dir / "sim" / "capture_mosaic.jpg", dir / "restored.h5", truth, "30");
+  for (const auto& [name, d] : {std::pair{"lossless", lossless}, {"plain", plain}, {"restored", restored}}) {
+    RecordProperty(std::string(name) + "_psnr_db", std::to_string(d.fidelity.psnr_db));
+    RecordProperty(std::string(name) + "_chroma_error", std::to_string(d.fidelity.chroma_error));
+    RecordProperty(std::string(name) + "_bands", std::to_string(d.bands));
+    RecordProperty(std::string(name) + "_block_rows_percent", std::to_string(d.block_rows));
+  }
+  // Measured: lossless 46.3 dB, chroma error 0.0031, bands 1.86; plain JPEG 31.6 dB, 0.024, 5.7; restored 31.2 dB,
+  // 0.025, 11.9. The real IMG_3 reads 11.5 plain and 5.6 restored: the restoration halves the real frame's bands and
+  // doubles these, so this scene is where it has to be improved against the truth (BENCHMARKS.md, thirty-seventh
+  // session). Asserted here is what makes the scene worth having: the JPEG, not the scene, makes the bands
+  // (the restored figures are recorded, not bounded, so that improving them can never fail the test).
+  EXPECT_GT(lossless.fidelity.psnr_db, 40.0);
+  EXPECT_LT(lossless.bands, 3.0);
+  EXPECT_GT(plain.bands, lossless.bands + 2.5);
+}
+
 }  // namespace
 }  // namespace lfsp

@@ -117,6 +117,8 @@ nlohmann::json SceneToJson(const Scene& scene);
 //   "comb", "layers" thin teeth, rails and pickets over fine textures (laid out for 512 x 512 views)
 //   "bars"         1-12 px bars and stripes at several depths over three textured walls (512 x 512)
 //   "sculpture"    smooth finely textured ellipsoids in front of a textured wall (512 x 512)
+//   "leaves"       large smooth leaves in shade: the real F01 frames' JPEG colour bands (with --exposure 1.8
+//                  --mosaic-jpeg 75; builtin_scenes.cc says how its colours were chosen)
 Scene BuiltinScene(const std::string& name);
 std::vector<std::string> BuiltinSceneNames();
 
