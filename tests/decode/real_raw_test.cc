@@ -159,8 +159,11 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
     // here; the restored one reads 6.5-6.9 (IMG_2, IMG_3), with the lattice gain's rms 0.0021 -> 0.0035: smoothing
     // the carriers' colour at the wide scale also smooths the lens lattice's harmonics that fall near the carriers
     // (the 5th across, 0.058 cycles/px from (pi, 0); the 4th down, 0.035 from (0, pi)). Not visible in the views;
-    // kept under watch here.
-    EXPECT_LT(alternation, 8.0);
+    // kept under watch here. Ending the restoration on its prior took IMG_2 from 6.97 to 10.6 and IMG_3 from 6.42 to
+    // 7.59 while the alternating energy itself fell (by 7 and 19 %): the ratio's reference band just below it (0.40-
+    // 0.47 cycles per row) lost 39 and 31 %, the chroma speckle the last projection had put back (BENCHMARKS.md,
+    // thirty-seventh session).
+    EXPECT_LT(alternation, 12.0);
 
     // The JPEG restoration ran, and the black level is the camera's, scaled to 8 bits.
     EXPECT_EQ(result.summary["jpeg_restoration"]["iterations"], PlainRawOptions{}.jpeg_restore_iterations);
@@ -172,6 +175,8 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
     // does not follow the blocks: on IMG_3 it sits on the veins of the leaf at the right, moves between views with the
     // scene's parallax, and keeps one phase across the width, where the blocks' rows turn through two cycles
     // (BENCHMARKS.md). The simulator's ground truth of two-horses, without any JPEG, reads 3.7 on the same measure.
+    // Ending the restoration on its prior (the last projection's per-block clamps left out): 3.08 / 4.19 / 5.57 ->
+    // 3.10 / 3.10 / 5.04.
     const double block_locked =
         BlockRowLuminance(result.light_field, shape.Centre(), LensletGrid::FromJson(result.summary["grid"], frame),
                           result.light_field.metadata["decode"]["view_step_pixels"]);
@@ -180,11 +185,13 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
     RecordProperty(std::string(frame) + "_block_locked_luma_percent", std::to_string(block_locked));
     RecordProperty(std::string(frame) + "_chroma_bands", std::to_string(bands));
     RecordProperty(std::string(frame) + "_luma_bands", std::to_string(luma_bands));
-    EXPECT_LT(block_locked, 0.18);
+    // 0.05-0.08 % before the restoration ended on its prior, 0.05-0.18 % since (IMG_3); the plain JPEG decode of the
+    // simulated capture reads 3.3 % before the gain is divided out.
+    EXPECT_LT(block_locked, 0.25);
     EXPECT_GT(result.summary["decode"]["jpeg_block_gain"]["views"].get<int>(), 60);
     EXPECT_LT(bands, 6.5);
     if (std::string(frame) == "IMG_2.jpg") {
-      EXPECT_LT(bands, 4.5);
+      EXPECT_LT(bands, 3.6);
     }
     // Colour: automatic white balance (no blue cast: blue was the largest mean on all three), means within 1.6x.
     EXPECT_EQ(result.summary["decode"]["white_balance"]["mode"], "auto");

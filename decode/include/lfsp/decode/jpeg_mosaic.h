@@ -61,8 +61,9 @@ struct MosaicRestoreReport {
 // alternating projections (POCS) between "every DCT coefficient lies inside the quantization bin the file
 // records" (which holds for the true mosaic) and "the colour carried by the Bayer carriers is smooth". Blocks whose
 // colour was quantized away take it from their neighbours, and the block envelope is flattened, within what the
-// recorded coefficients allow. Luminance detail away from the carriers is left to the data. Deterministic; uses the
-// OpenMP threads.
+// recorded coefficients allow. Luminance detail away from the carriers is left to the data. The rounds end on the
+// prior, not on the projection (jpeg_mosaic.cc, EndOnThePrior, says why), so the colour is the smooth estimate and
+// colour finer than the wide scale is not kept. Deterministic; uses the OpenMP threads.
 cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRestoreOptions& options = {},
                           MosaicRestoreReport* report = nullptr);
 
