@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <memory>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
 
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
@@ -270,10 +272,12 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
 // highlights and keep their value: the prior would tint them with the colour around, and the decoder neutralises
 // clipped highlights by their level.
 void EndOnThePrior(cv::Mat& image, double narrow_sigma, double wide_sigma) {
-  const cv::Mat clipped = image >= 254.5f;
-  const cv::Mat projected = image.clone();
+  std::vector<std::pair<std::size_t, float>> clipped;  // few (0.9 % of IMG_1): no copy of the whole image
+  const float* pixels = image.ptr<float>();
+  for (std::size_t i = 0; i < image.total(); ++i)
+    if (pixels[i] >= 254.5f) clipped.emplace_back(i, pixels[i]);
   SmoothCarrierColour(image, narrow_sigma, wide_sigma);
-  projected.copyTo(image, clipped);
+  for (const auto& [index, value] : clipped) image.ptr<float>()[index] = value;
   image = cv::max(cv::min(image, 255.0f), 0.0f);
 }
 
