@@ -68,31 +68,34 @@ std::string RestoredBesideBaselines() {
          simulated.baselines;
 }
 
-}  // namespace
-
-LFSP_BENCH_CASE {
+// A simulated capture's JPEG mosaic, restored, beside its lossless and plain decodes.
+BenchCase SimulatedJpegCase(const std::string& name, const std::string& input, const std::string& scene,
+                            double exposure) {
   BenchCase c;
   c.stage = "decode";
-  c.name = "jpeg-mosaic-f01";
-  c.input = "simulated F01 two-horses 3280x3280, exposure 0.3, 8-bit JPEG q75 -> 9x9x379x378";
+  c.name = name;
+  c.input = input;
   c.target = "bands <= lossless + 0.5; PSNR loss <= 2.5 dB";
   c.repetitions = 1;
-  // Exposure 0.3: the mosaic's median code about 20 of 255, as dark as the real frames.
-  c.prepare = [] { PrepareSimulated("two-horses", 0.3); };
+  c.prepare = [scene, exposure] { PrepareSimulated(scene, exposure); };
   c.run = RestoredBesideBaselines;
   return c;
 }
 
+}  // namespace
+
+// Exposure 0.3: the mosaic's median code about 20 of 255, as dark as the real frames.
 LFSP_BENCH_CASE {
-  BenchCase c;
-  c.stage = "decode";
-  c.name = "jpeg-mosaic-f01-leaves";
-  c.input = "simulated F01 leaves (large smooth leaves in shade) 3280x3280, exposure 1.8, 8-bit JPEG q75";
-  c.target = "bands <= lossless + 0.5; PSNR loss <= 2.5 dB";
-  c.repetitions = 1;
-  c.prepare = [] { PrepareSimulated("leaves", 1.8); };
-  c.run = RestoredBesideBaselines;
-  return c;
+  return SimulatedJpegCase("jpeg-mosaic-f01",
+                           "simulated F01 two-horses 3280x3280, exposure 0.3, 8-bit JPEG q75 -> 9x9x379x378",
+                           "two-horses", 0.3);
+}
+
+// The scene whose JPEG shows the real frames' bands (simulate/src/builtin_scenes.cc).
+LFSP_BENCH_CASE {
+  return SimulatedJpegCase(
+      "jpeg-mosaic-f01-leaves",
+      "simulated F01 leaves (large smooth leaves in shade) 3280x3280, exposure 1.8, 8-bit JPEG q75", "leaves", 1.8);
 }
 
 LFSP_BENCH_CASE {
