@@ -238,7 +238,7 @@ json CheckerboardScene() {
 // camera's reference. The colours are chosen so that the mosaic's brighter half reads raw R/G 0.87, B/G 0.69 above
 // the black level at `--exposure 1.8` (the real IMG_3: 0.84, 0.76; the camera's white balance makes a grey surface
 // 1.12, 0.65), and a quarter of the 8x8 blocks keeps the (7,7) coefficient (IMG_3: a third). The third leaf is
-// purple-grey, as IMG_3's darker leaves read.
+// purple, the colour IMG_3's darker leaves decode to.
 json LeavesScene() {
   const auto leaf = [](const std::string& name, int label, float cx, float cy, float radius, float disparity,
                        const std::vector<double>& dark, const std::vector<double>& light, int seed) {
