@@ -268,14 +268,16 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
 // The last step of the restoration: the prior once more after the last projection. That projection moves every
 // block back into its own bins on its own, so the point of the bins nearest a smooth colour carries a clamp per block:
 // the block pattern again, which the lens rows sample at a drifting phase (bands in the views). Ending on the prior
-// leaves it out, at the price of the data's colour finer than the wide scale. Pixels decoded at full scale are clipped
-// highlights and keep their value: the prior would tint them with the colour around, and the decoder neutralises
-// clipped highlights by their level.
+// leaves it out, at the price of the data's colour finer than the wide scale. Pixels the last projection left at full
+// scale are clipped highlights and keep their value: the prior would tint them with the colour around, and the
+// decoder neutralises clipped highlights by their level.
 void EndOnThePrior(cv::Mat& image, double narrow_sigma, double wide_sigma) {
+  constexpr float kFullScale = 254.5f;  // the projection clamps to 255; a clipped JPEG pixel decodes at 255
+  CV_Assert(image.isContinuous());      // indexed as one run of pixels below
   std::vector<std::pair<std::size_t, float>> clipped;  // few (0.9 % of IMG_1): no copy of the whole image
   const float* pixels = image.ptr<float>();
   for (std::size_t i = 0; i < image.total(); ++i)
-    if (pixels[i] >= 254.5f) clipped.emplace_back(i, pixels[i]);
+    if (pixels[i] >= kFullScale) clipped.emplace_back(i, pixels[i]);
   SmoothCarrierColour(image, narrow_sigma, wide_sigma);
   for (const auto& [index, value] : clipped) image.ptr<float>()[index] = value;
   image = cv::max(cv::min(image, 255.0f), 0.0f);

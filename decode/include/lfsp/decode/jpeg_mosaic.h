@@ -57,13 +57,14 @@ struct MosaicRestoreReport {
   double last_correction = 0.0;  // mean distance the last iteration's coefficients moved back into their bins
 };
 
-// The mosaic that the coefficients most plausibly came from, in 8-bit codes (CV_32FC1, 0..255, width x height):
+// An estimate of the mosaic the coefficients came from, in 8-bit codes (CV_32FC1, 0..255, width x height):
 // alternating projections (POCS) between "every DCT coefficient lies inside the quantization bin the file
 // records" (which holds for the true mosaic) and "the colour carried by the Bayer carriers is smooth". Blocks whose
 // colour was quantized away take it from their neighbours, and the block envelope is flattened, within what the
 // recorded coefficients allow. Luminance detail away from the carriers is left to the data. The rounds end on the
-// prior, not on the projection (jpeg_mosaic.cc, EndOnThePrior, says why), so the colour is the smooth estimate and
-// colour finer than the wide scale is not kept. Deterministic; uses the OpenMP threads.
+// prior, not on the projection (jpeg_mosaic.cc, EndOnThePrior, says why): the colour is the smooth estimate, colour
+// finer than the wide scale is not kept, and the result lies near the bins rather than exactly in them.
+// Deterministic; uses the OpenMP threads.
 cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRestoreOptions& options = {},
                           MosaicRestoreReport* report = nullptr);
 
