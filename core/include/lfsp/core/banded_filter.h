@@ -13,4 +13,9 @@ namespace lfsp {
 // runs on the calling thread alone.
 void GaussianBlurInBands(const cv::Mat& source, cv::Mat& destination, double sigma_x, double sigma_y, int border);
 
+// cv::sepFilter2D of a float image with float kernels (CV_32F columns or rows), the same bytes, in bands as above and
+// under the same conditions.
+void SeparableFilterInBands(const cv::Mat& source, cv::Mat& destination, const cv::Mat& kernel_x,
+                            const cv::Mat& kernel_y, int border);
+
 }  // namespace lfsp
