@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -14,6 +15,12 @@ namespace {
 // A pixel is grey when, after the gains and the colour matrix, its largest channel is at most this many times its
 // smallest (about 13 % saturation).
 constexpr double kGreyRatio = 1.3;
+// Looser tolerances, tried in turn when too few pixels are grey under the start gains: a light far from the one the
+// start gains were made for can leave no surface within kGreyRatio of neutral. The real F01 frames' shade is bluer
+// than the camera's reference, and under its gains IMG_3's leaves and dark ground are all green or cyan: 0.12 % of
+// its pixels are grey, below kMinGreyFraction. The search settles at the first looser tolerance that finds enough,
+// then goes on at kGreyRatio from there.
+constexpr double kLooserGreyRatios[] = {1.6, 2.0};
 // Below this share of the usable pixels the grey ones are too few to trust: the start gains stay.
 constexpr double kMinGreyFraction = 0.002;
 constexpr int kMaxRounds = 100;
@@ -40,6 +47,7 @@ struct GreySums {
 struct UsablePixels {
   std::vector<float> rgb;              // three per pixel
   std::vector<std::size_t> row_start;  // pixel index where each sampled row starts, and one past the last
+  std::size_t Count() const { return row_start.back(); }
 };
 
 UsablePixels GatherUsablePixels(const cv::Mat& rgb, const cv::Mat& grey_white, float clip_level) {
@@ -79,8 +87,8 @@ UsablePixels GatherUsablePixels(const cv::Mat& rgb, const cv::Mat& grey_white, f
   return pixels;
 }
 
-GreySums SumGreyPixels(const UsablePixels& pixels, const std::array<double, 9>& ccm,
-                       const std::array<double, 3>& gains) {
+GreySums SumGreyPixels(const UsablePixels& pixels, const std::array<double, 9>& ccm, const std::array<double, 3>& gains,
+                       double grey_ratio) {
   const int rows = static_cast<int>(pixels.row_start.size()) - 1;
   // Summed in a fixed order (OrderedParallelSum), so that the gains, and the decode, do not depend on the threads.
   return OrderedParallelSum(
@@ -96,7 +104,7 @@ GreySums SumGreyPixels(const UsablePixels& pixels, const std::array<double, 9>& 
           const double out_g = ccm[3] * br + ccm[4] * bg + ccm[5] * bb;
           const double out_b = ccm[6] * br + ccm[7] * bg + ccm[8] * bb;
           const double low = std::min({out_r, out_g, out_b}), high = std::max({out_r, out_g, out_b});
-          if (!(low > 0.0) || high > kGreyRatio * low) continue;
+          if (!(low > 0.0) || high > grey_ratio * low) continue;
           for (int c = 0; c < 3; ++c) sums.sum[static_cast<std::size_t>(c)] += in[c];
           ++sums.grey;
         }
@@ -106,6 +114,29 @@ GreySums SumGreyPixels(const UsablePixels& pixels, const std::array<double, 9>& 
         into.grey += from.grey;
         into.usable += from.usable;
       });
+}
+
+// Rounds at one grey tolerance, starting from `gains`: the grey pixels' mean is made grey until the gains settle (a
+// change below 0.2 %), each gain kept within kMaxCorrection of `start`. Nothing when a round finds too few grey
+// pixels. Counts its rounds into `report.rounds` and leaves the last round's grey share in `report.grey_fraction`.
+std::optional<std::array<double, 3>> SettleOnGrey(const UsablePixels& usable, const std::array<double, 9>& ccm,
+                                                  const std::array<double, 3>& start, std::array<double, 3> gains,
+                                                  double grey_ratio, AutoWhiteBalanceReport& report) {
+  for (int round = 0; round < kMaxRounds; ++round) {
+    ++report.rounds;
+    const GreySums sums = SumGreyPixels(usable, ccm, gains, grey_ratio);
+    report.grey_fraction = sums.usable > 0 ? static_cast<double>(sums.grey) / static_cast<double>(sums.usable) : 0.0;
+    if (report.grey_fraction < kMinGreyFraction || !(sums.sum[0] > 0) || !(sums.sum[2] > 0)) return std::nullopt;
+    std::array<double, 3> next = {sums.sum[1] / sums.sum[0], 1.0, sums.sum[1] / sums.sum[2]};
+    for (int c : {0, 2})
+      next[static_cast<std::size_t>(c)] =
+          std::clamp(next[static_cast<std::size_t>(c)], start[static_cast<std::size_t>(c)] / kMaxCorrection,
+                     start[static_cast<std::size_t>(c)] * kMaxCorrection);
+    const double change = std::max(std::abs(std::log(next[0] / gains[0])), std::abs(std::log(next[2] / gains[2])));
+    gains = next;
+    if (change < 0.002) break;
+  }
+  return gains;
 }
 
 // The level above which a channel counts as clipped: just under the brightest well-lit sample.
@@ -163,11 +194,8 @@ std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata) {
 }
 
 nlohmann::json AutoWhiteBalanceReport::ToJson() const {
-  return {{"start_gains", start},
-          {"gains", gains},
-          {"grey_fraction", grey_fraction},
-          {"rounds", rounds},
-          {"kept_start", kept_start}};
+  return {{"start_gains", start},           {"gains", gains},   {"start_grey_ratio", start_grey_ratio},
+          {"grey_fraction", grey_fraction}, {"rounds", rounds}, {"kept_start", kept_start}};
 }
 
 std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& grey_white,
@@ -177,28 +205,32 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
   AutoWhiteBalanceReport& out = report ? *report : local;
   out = {};
   out.start = start;
+  out.gains = start;
+  out.kept_start = true;
   const UsablePixels usable = GatherUsablePixels(rgb, grey_white, ClipLevel(rgb, grey_white));
-  std::array<double, 3> gains = start;
-  for (out.rounds = 1; out.rounds <= kMaxRounds; ++out.rounds) {
-    const GreySums sums = SumGreyPixels(usable, ccm, gains);
-    out.grey_fraction = sums.usable > 0 ? static_cast<double>(sums.grey) / static_cast<double>(sums.usable) : 0.0;
-    if (out.grey_fraction < kMinGreyFraction || !(sums.sum[0] > 0) || !(sums.sum[2] > 0)) {
-      out.kept_start = true;
-      gains = start;
-      break;
-    }
-    std::array<double, 3> next = {sums.sum[1] / sums.sum[0], 1.0, sums.sum[1] / sums.sum[2]};
-    for (int c : {0, 2})
-      next[static_cast<std::size_t>(c)] =
-          std::clamp(next[static_cast<std::size_t>(c)], start[static_cast<std::size_t>(c)] / kMaxCorrection,
-                     start[static_cast<std::size_t>(c)] * kMaxCorrection);
-    const double change = std::max(std::abs(std::log(next[0] / gains[0])), std::abs(std::log(next[2] / gains[2])));
-    gains = next;
-    if (change < 0.002) break;
+  const auto enough_grey = [&](const std::array<double, 3>& gains, double ratio) {
+    return SumGreyPixels(usable, ccm, gains, ratio).grey >= kMinGreyFraction * static_cast<double>(usable.Count());
+  };
+  // The tolerance the search starts at: the strict one, or the first looser one that finds enough grey pixels.
+  out.start_grey_ratio = kGreyRatio;
+  for (const double looser : kLooserGreyRatios) {
+    if (enough_grey(start, out.start_grey_ratio)) break;
+    out.start_grey_ratio = looser;
   }
-  out.rounds = std::min(out.rounds, kMaxRounds);
-  out.gains = gains;
-  return gains;
+  const std::optional<std::array<double, 3>> first = SettleOnGrey(usable, ccm, start, start, out.start_grey_ratio, out);
+  if (!first) return start;
+  out.gains = *first;
+  out.kept_start = false;
+  // Settled at a looser tolerance: go on at the strict one, unless it finds too few grey pixels even there.
+  if (out.start_grey_ratio > kGreyRatio) {
+    AutoWhiteBalanceReport strict = out;
+    if (const auto second = SettleOnGrey(usable, ccm, start, *first, kGreyRatio, strict)) {
+      out.gains = *second;
+      out.grey_fraction = strict.grey_fraction;
+    }
+    out.rounds = strict.rounds;
+  }
+  return out.gains;
 }
 
 }  // namespace lfsp::decode

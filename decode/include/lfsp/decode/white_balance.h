@@ -31,7 +31,10 @@ std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata);
 struct AutoWhiteBalanceReport {
   std::array<double, 3> start = {1.0, 1.0, 1.0};  // gains the search began from (the camera's)
   std::array<double, 3> gains = {1.0, 1.0, 1.0};  // what it settled on
-  double grey_fraction = 0.0;                     // share of the well-lit pixels taken as grey in the last round
+  // The grey tolerance (largest over smallest channel) the search started at: 1.3, or a looser one when too few
+  // pixels were grey under the start gains; it then went on at 1.3 from where the looser one settled.
+  double start_grey_ratio = 1.3;
+  double grey_fraction = 0.0;  // share of the well-lit pixels taken as grey in the last round
   int rounds = 0;
   bool kept_start = false;  // too few grey pixels: the start gains were kept
   nlohmann::json ToJson() const;
@@ -41,7 +44,9 @@ struct AutoWhiteBalanceReport {
 // automatic white balance algorithm using gray color points in images" (IEEE Trans. Consumer Electronics, 2006):
 // starting from `start`, the well-lit, unclipped pixels whose colour after the gains and `ccm` is close to neutral
 // are averaged in sensor RGB, the gains are set to make that average grey, and the selection is repeated until the
-// gains settle. Coloured scenes (foliage) keep their colour: only pixels already near grey vote. `rgb` is the
+// gains settle. Coloured scenes (foliage) keep their colour: only pixels already near grey vote. When too few are near
+// grey under `start` (a light far from the one `start` was made for), looser tolerances find the least coloured
+// surfaces first, and the search goes on at the strict one from there. `rgb` is the
 // devignetted, demosaicked sensor image (CV_32FC3, R G B), `grey_white` its white image (CV_32FC1, 1 at the
 // micro-image peak): only pixels with white >= 0.5 are used.
 std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& grey_white,

@@ -1,0 +1,63 @@
+// The automatic white balance's search for grey surfaces (lfsp/decode/white_balance.h), on sensor images built so
+// that which pixels are grey, and under which gains, is known.
+
+#include "lfsp/decode/white_balance.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <opencv2/core.hpp>
+
+namespace lfsp::decode {
+namespace {
+
+const std::array<double, 9> kIdentity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+// A 200 x 200 sensor image of green foliage (G three times R) with a patch of grey surfaces covering `grey_share`
+// of it, whose blue reads `blue_deficit` times too low (a light bluer or redder than the start gains were made for).
+// One pixel is brighter than all others, so that the clip level sits above the scene.
+cv::Mat Foliage(double grey_share, double blue_deficit) {
+  cv::Mat rgb(200, 200, CV_32FC3, cv::Scalar(0.2, 0.6, 0.25));
+  const int grey_rows = static_cast<int>(grey_share * 200.0 + 0.5);
+  rgb(cv::Rect(0, 100, 200, grey_rows)).setTo(cv::Scalar(0.5, 0.5, 0.5 / blue_deficit));
+  rgb.at<cv::Vec3f>(0, 0) = cv::Vec3f(1.0f, 1.0f, 1.0f);
+  return rgb;
+}
+
+const cv::Mat kLit(200, 200, CV_32FC1, cv::Scalar(1.0));
+
+TEST(AutoWhiteBalance, GreySurfacesWithinTheStrictToleranceDecideAlone) {
+  AutoWhiteBalanceReport report;
+  const auto gains = EstimateWhiteBalance(Foliage(0.05, 1.2), kLit, kIdentity, {1, 1, 1}, &report);
+  EXPECT_NEAR(gains[0], 1.0, 1e-6);
+  EXPECT_NEAR(gains[2], 1.2, 1e-6);
+  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 1.3);
+  EXPECT_FALSE(report.kept_start);
+}
+
+// Under the start gains the grey surfaces read 45 % bluish-short, beyond the strict tolerance (1.3), and nothing
+// else is near grey: the search starts at the looser 1.6, then settles at the strict one. It kept the start gains
+// before (the real IMG_3 under the F01's gains: 0.12 % grey).
+TEST(AutoWhiteBalance, ALightFarFromTheStartGainsIsFoundThroughALooserTolerance) {
+  AutoWhiteBalanceReport report;
+  const auto gains = EstimateWhiteBalance(Foliage(0.05, 1.45), kLit, kIdentity, {1, 1, 1}, &report);
+  EXPECT_NEAR(gains[0], 1.0, 1e-6);
+  EXPECT_NEAR(gains[2], 1.45, 1e-6);
+  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 1.6);
+  EXPECT_FALSE(report.kept_start);
+  EXPECT_GT(report.grey_fraction, 0.04);
+  // Settled where the strict tolerance took over: the foliage stays green.
+  EXPECT_LT(report.grey_fraction, 0.06);
+}
+
+TEST(AutoWhiteBalance, ASceneWithoutGreyKeepsTheStartGains) {
+  AutoWhiteBalanceReport report;
+  const std::array<double, 3> start = {0.9, 1.0, 1.5};
+  const auto gains = EstimateWhiteBalance(Foliage(0.0, 1.0), kLit, kIdentity, start, &report);
+  EXPECT_EQ(gains, start);
+  EXPECT_TRUE(report.kept_start);
+  EXPECT_LT(report.grey_fraction, 0.002);
+}
+
+}  // namespace
+}  // namespace lfsp::decode
