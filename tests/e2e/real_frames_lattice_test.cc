@@ -33,7 +33,8 @@ TEST(RealFramesLattice, DepthMapsOfTheF01FramesShowNoLensLattice) {
       SCOPED_TRACE(map);
       const double ratio = peaks.at(map).at("ratio").get<double>();
       RecordProperty(std::string(frame) + "_" + map, std::to_string(ratio));
-      // Measured: confidence 1.24 / 1.34 / 1.87, disparity 1.39 / 1.42 / 1.66 (IMG_1-3); noise reads about 1 and its
+      // Measured: confidence 1.45 / 1.34 / 1.72, disparity 1.61 / 1.50 / 1.43 (IMG_1-3; 1.24 / 1.34 / 1.87 and 1.39 /
+      // 1.42 / 1.66 before the restoration's prior stopped taking luminance out as colour); noise reads about 1 and its
       // largest over the few hundred bins looked at up to about 1.8. The measure leaves out the maps' 15 px frame:
       // IMG_2's first columns, where the slicing folds its cubic onto the first lens of each row, alternate row by row
       // in disparity and read 2.27 with it.
@@ -43,8 +44,9 @@ TEST(RealFramesLattice, DepthMapsOfTheF01FramesShowNoLensLattice) {
     if (std::string(frame) == "IMG_2") {
       // The measure sees the lattice where it is: in the per-pixel (--wta) disparity of a decode that keeps the gain
       // each view takes from where its samples fall in the JPEG's blocks (--no-jpeg-block-flattening), at the lens
-      // rows' beat with the blocks (12.9); the default decode divides that gain out (decode/jpeg_block_gain.h), and
-      // the same per-pixel disparity reads 1.98.
+      // rows' beat with the blocks; the default decode divides that gain out (decode/jpeg_block_gain.h). Measured
+      // 3.21 and 1.51. It read 12.9 and 1.98 while the restoration's prior took 2.9 % of the luminance out a round:
+      // the projection then held each block's mean at the edge of its DC bin, which was most of that gain.
       const auto wta_peak = [&](const std::filesystem::path& light_field, const std::string& name) {
         const auto wta = RunLfsp({"-q", "depth", light_field.string(), "--wta", "--out", (dir / name).string()});
         EXPECT_EQ(wta.exit_status, 0) << wta.err;
@@ -58,9 +60,9 @@ TEST(RealFramesLattice, DepthMapsOfTheF01FramesShowNoLensLattice) {
       const nlohmann::json flattened = wta_peak(out / "segmentation.h5", "wta.pfm");
       RecordProperty("IMG_2_wta_disparity_block_gain_kept", std::to_string(with_gain.at("ratio").get<double>()));
       RecordProperty("IMG_2_wta_disparity", std::to_string(flattened.at("ratio").get<double>()));
-      EXPECT_GT(with_gain.at("ratio").get<double>(), 4.0);  // 12.9
+      EXPECT_GT(with_gain.at("ratio").get<double>(), 2.5);  // 3.21
       EXPECT_NEAR(with_gain.at("fy").get<double>(), 8.6 / 8.0 - 1.0, 0.01);
-      EXPECT_LT(flattened.at("ratio").get<double>(), 2.5);  // 1.98
+      EXPECT_LT(flattened.at("ratio").get<double>(), 2.0);  // 1.51
     }
   }
 }
