@@ -26,29 +26,26 @@ cv::Mat Foliage(double grey_share, double blue_deficit) {
 
 const cv::Mat kLit(200, 200, CV_32FC1, cv::Scalar(1.0));
 
-TEST(AutoWhiteBalance, GreySurfacesWithinTheStrictToleranceDecideAlone) {
+// The search from gains 1, 1, 1 on Foliage(0.05, blue_deficit): the grey surfaces end grey (blue gain = the
+// deficit), found from the tolerance `start_ratio`.
+void ExpectGreySurfacesFound(double blue_deficit, double start_ratio) {
   AutoWhiteBalanceReport report;
-  const auto gains = EstimateWhiteBalance(Foliage(0.05, 1.2), kLit, kIdentity, {1, 1, 1}, &report);
+  const auto gains = EstimateWhiteBalance(Foliage(0.05, blue_deficit), kLit, kIdentity, {1, 1, 1}, &report);
   EXPECT_NEAR(gains[0], 1.0, 1e-6);
-  EXPECT_NEAR(gains[2], 1.2, 1e-6);
-  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 1.3);
+  EXPECT_NEAR(gains[2], blue_deficit, 1e-6);
+  EXPECT_DOUBLE_EQ(report.start_grey_ratio, start_ratio);
   EXPECT_FALSE(report.kept_start);
+  // Settled at the strict tolerance: the grey patch alone votes, the foliage stays green.
+  EXPECT_GT(report.grey_fraction, 0.04);
+  EXPECT_LT(report.grey_fraction, 0.06);
 }
+
+TEST(AutoWhiteBalance, GreySurfacesWithinTheStrictToleranceDecideAlone) { ExpectGreySurfacesFound(1.2, 1.3); }
 
 // Under the start gains the grey surfaces read 45 % bluish-short, beyond the strict tolerance (1.3), and nothing
 // else is near grey: the search starts at the looser 1.6, then settles at the strict one. It kept the start gains
 // before (the real IMG_3 under the F01's gains: 0.12 % grey).
-TEST(AutoWhiteBalance, ALightFarFromTheStartGainsIsFoundThroughALooserTolerance) {
-  AutoWhiteBalanceReport report;
-  const auto gains = EstimateWhiteBalance(Foliage(0.05, 1.45), kLit, kIdentity, {1, 1, 1}, &report);
-  EXPECT_NEAR(gains[0], 1.0, 1e-6);
-  EXPECT_NEAR(gains[2], 1.45, 1e-6);
-  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 1.6);
-  EXPECT_FALSE(report.kept_start);
-  EXPECT_GT(report.grey_fraction, 0.04);
-  // Settled where the strict tolerance took over: the foliage stays green.
-  EXPECT_LT(report.grey_fraction, 0.06);
-}
+TEST(AutoWhiteBalance, ALightFarFromTheStartGainsIsFoundThroughALooserTolerance) { ExpectGreySurfacesFound(1.45, 1.6); }
 
 TEST(AutoWhiteBalance, ASceneWithoutGreyKeepsTheStartGains) {
   AutoWhiteBalanceReport report;
