@@ -15,12 +15,12 @@ namespace {
 // A pixel is grey when, after the gains and the colour matrix, its largest channel is at most this many times its
 // smallest (about 13 % saturation).
 constexpr double kGreyRatio = 1.3;
-// Looser tolerances, tried in turn when too few pixels are grey under the start gains: a light far from the one the
-// start gains were made for can leave no surface within kGreyRatio of neutral. The real F01 frames' shade is bluer
-// than the camera's reference, and under its gains IMG_3's leaves and dark ground are all green or cyan: 0.12 % of
-// its pixels are grey, below kMinGreyFraction. The search settles at the first looser tolerance that finds enough,
-// then goes on at kGreyRatio from there.
-constexpr double kLooserGreyRatios[] = {1.6, 2.0};
+// The tolerances tried in turn, from the start gains, while the first round at one finds too few grey pixels: a light
+// far from the one the start gains were made for can leave no surface within kGreyRatio of neutral. The real F01
+// frames' shade is bluer than the camera's reference, and under its gains IMG_3's leaves and dark ground are all green
+// or cyan: 0.12 % of its pixels are within 1.3x, below kMinGreyFraction. A looser tolerance finds the least coloured
+// surfaces; from where it settles, the search goes on at kGreyRatio.
+constexpr double kGreyRatios[] = {kGreyRatio, 1.6, 2.0};
 // Below this share of the usable pixels the grey ones are too few to trust: the start gains stay.
 constexpr double kMinGreyFraction = 0.002;
 constexpr int kMaxRounds = 100;
@@ -194,8 +194,13 @@ std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata) {
 }
 
 nlohmann::json AutoWhiteBalanceReport::ToJson() const {
-  return {{"start_gains", start},           {"gains", gains},   {"start_grey_ratio", start_grey_ratio},
-          {"grey_fraction", grey_fraction}, {"rounds", rounds}, {"kept_start", kept_start}};
+  return {{"start_gains", start},
+          {"gains", gains},
+          {"start_grey_ratio", start_grey_ratio},
+          {"settled_grey_ratio", settled_grey_ratio},
+          {"grey_fraction", grey_fraction},
+          {"rounds", rounds},
+          {"kept_start", kept_start}};
 }
 
 std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& grey_white,
@@ -208,25 +213,23 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
   out.gains = start;
   out.kept_start = true;
   const UsablePixels usable = GatherUsablePixels(rgb, grey_white, ClipLevel(rgb, grey_white));
-  const auto enough_grey = [&](const std::array<double, 3>& gains, double ratio) {
-    return SumGreyPixels(usable, ccm, gains, ratio).grey >= kMinGreyFraction * static_cast<double>(usable.Count());
-  };
-  // The tolerance the search starts at: the strict one, or the first looser one that finds enough grey pixels.
-  out.start_grey_ratio = kGreyRatio;
-  for (const double looser : kLooserGreyRatios) {
-    if (enough_grey(start, out.start_grey_ratio)) break;
-    out.start_grey_ratio = looser;
+  std::optional<std::array<double, 3>> settled;
+  for (const double ratio : kGreyRatios) {
+    out.start_grey_ratio = ratio;
+    const int rounds_before = out.rounds;
+    settled = SettleOnGrey(usable, ccm, start, start, ratio, out);
+    if (settled || out.rounds > rounds_before + 1) break;  // a later round's failure keeps the start gains, as always
   }
-  const std::optional<std::array<double, 3>> first = SettleOnGrey(usable, ccm, start, start, out.start_grey_ratio, out);
-  if (!first) return start;
-  out.gains = *first;
+  if (!settled) return start;
+  out.gains = *settled;
   out.kept_start = false;
-  // Settled at a looser tolerance: go on at the strict one, unless it finds too few grey pixels even there.
-  if (out.start_grey_ratio > kGreyRatio) {
+  out.settled_grey_ratio = out.start_grey_ratio;
+  if (out.start_grey_ratio > kGreyRatio) {  // settled at a looser tolerance: on at the strict one, if it finds enough
     AutoWhiteBalanceReport strict = out;
-    if (const auto second = SettleOnGrey(usable, ccm, start, *first, kGreyRatio, strict)) {
-      out.gains = *second;
+    if (const auto refined = SettleOnGrey(usable, ccm, start, *settled, kGreyRatio, strict)) {
+      out.gains = *refined;
       out.grey_fraction = strict.grey_fraction;
+      out.settled_grey_ratio = kGreyRatio;
     }
     out.rounds = strict.rounds;
   }

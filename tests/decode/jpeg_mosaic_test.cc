@@ -117,10 +117,11 @@ TEST(JpegMosaic, RestorationBringsBackTheColourQuantizationTook) {
   RecordProperty("rms_plain", std::to_string(plain_rms));
   RecordProperty("rms_restored", std::to_string(restored_rms));
   EXPECT_LT(restored_rms, plain_rms);
-  // Measured 4.44 -> 3.73 codes rms. The luminance alone (2x2 means, which hold no carrier) moves the other way,
-  // 341 -> 473 (L2 over the frame; 602 while the prior's narrow filter let the luminance through, below): smoothing
-  // the carriers' colour leaks into it where the colour changes within a tile, at the sharp rims of the micro-images.
-  // Recorded, not asserted; BENCHMARKS.md has the decoded views' figures.
+  // Measured 4.44 -> 3.73 codes rms (4.00 while the prior's narrow filter let the luminance through, below; the 3.52
+  // this comment gave before was stale). The luminance alone (2x2 means, which hold no carrier) moves the other way,
+  // 341 -> 473 (L2 over the frame; 602 before the filter's change, and the 348 -> 450 given before stale too):
+  // smoothing the carriers' colour leaks into it where the colour changes within a tile, at the sharp rims of the
+  // micro-images. Recorded, not asserted; BENCHMARKS.md has the decoded views' figures.
   cv::Mat truth_luma, plain_luma, restored_luma;
   cv::resize(mosaic.codes, truth_luma, cv::Size(kSize / 2, kSize / 2), 0, 0, cv::INTER_AREA);
   cv::resize(decoded, plain_luma, cv::Size(kSize / 2, kSize / 2), 0, 0, cv::INTER_AREA);

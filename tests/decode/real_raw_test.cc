@@ -204,7 +204,7 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
       EXPECT_LT(bands, 3.6);
     }
     // Colour: automatic white balance (no blue cast: blue was the largest mean on all three), means within 1.6x.
-    // IMG_2 (a white shoe on a purple carpet) reads blue and red level, 0.5586 and 0.5586 (G 0.519), since the
+    // IMG_2 (a white shoe on a purple carpet) reads blue and red level, 0.5586 and 0.5586 (G 0.5196), since the
     // restoration keeps the carpet's colour: blue may reach red or green by 0.1 %, no further.
     EXPECT_EQ(result.summary["decode"]["white_balance"]["mode"], "auto");
     const std::array<double, 3> means = CentreMeans(result.light_field);

@@ -34,6 +34,7 @@ void ExpectGreySurfacesFound(double blue_deficit, double start_ratio) {
   EXPECT_NEAR(gains[0], 1.0, 1e-6);
   EXPECT_NEAR(gains[2], blue_deficit, 1e-6);
   EXPECT_DOUBLE_EQ(report.start_grey_ratio, start_ratio);
+  EXPECT_DOUBLE_EQ(report.settled_grey_ratio, 1.3);
   EXPECT_FALSE(report.kept_start);
   // Settled at the strict tolerance: the grey patch alone votes, the foliage stays green.
   EXPECT_GT(report.grey_fraction, 0.04);
@@ -47,12 +48,30 @@ TEST(AutoWhiteBalance, GreySurfacesWithinTheStrictToleranceDecideAlone) { Expect
 // before (the real IMG_3 under the F01's gains: 0.12 % grey).
 TEST(AutoWhiteBalance, ALightFarFromTheStartGainsIsFoundThroughALooserTolerance) { ExpectGreySurfacesFound(1.45, 1.6); }
 
+// Two surfaces, one 40 % reddish and one 40 % bluish, average to grey: the looser tolerance takes both and balances
+// them, and at the strict one neither is grey under any gains. The looser tolerance's gains stand.
+TEST(AutoWhiteBalance, GainsStayAtTheLooserToleranceWhenTheStrictOneFindsNone) {
+  cv::Mat rgb = Foliage(0.0, 1.0);
+  rgb(cv::Rect(0, 100, 200, 6)).setTo(cv::Scalar(0.7, 0.5, 0.5));  // the search reads every other row and column
+  rgb(cv::Rect(0, 106, 200, 6)).setTo(cv::Scalar(0.5, 0.5, 0.7));
+  AutoWhiteBalanceReport report;
+  const auto gains = EstimateWhiteBalance(rgb, kLit, kIdentity, {1, 1, 1}, &report);
+  EXPECT_NEAR(gains[0], 1.0 / 1.2, 1e-6);
+  EXPECT_NEAR(gains[2], 1.0 / 1.2, 1e-6);
+  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 1.6);
+  EXPECT_DOUBLE_EQ(report.settled_grey_ratio, 1.6);
+  EXPECT_FALSE(report.kept_start);
+  EXPECT_GT(report.grey_fraction, 0.04);
+}
+
 TEST(AutoWhiteBalance, ASceneWithoutGreyKeepsTheStartGains) {
   AutoWhiteBalanceReport report;
   const std::array<double, 3> start = {0.9, 1.0, 1.5};
   const auto gains = EstimateWhiteBalance(Foliage(0.0, 1.0), kLit, kIdentity, start, &report);
   EXPECT_EQ(gains, start);
   EXPECT_TRUE(report.kept_start);
+  EXPECT_DOUBLE_EQ(report.start_grey_ratio, 2.0);  // every tolerance tried
+  EXPECT_DOUBLE_EQ(report.settled_grey_ratio, 0.0);
   EXPECT_LT(report.grey_fraction, 0.002);
 }
 

@@ -33,11 +33,11 @@ TEST(RealFramesLattice, DepthMapsOfTheF01FramesShowNoLensLattice) {
       SCOPED_TRACE(map);
       const double ratio = peaks.at(map).at("ratio").get<double>();
       RecordProperty(std::string(frame) + "_" + map, std::to_string(ratio));
-      // Measured: confidence 1.45 / 1.34 / 1.72, disparity 1.61 / 1.50 / 1.43 (IMG_1-3; 1.24 / 1.34 / 1.87 and 1.39 /
-      // 1.42 / 1.66 before the restoration's prior stopped taking luminance out as colour); noise reads about 1 and its
-      // largest over the few hundred bins looked at up to about 1.8. The measure leaves out the maps' 15 px frame:
-      // IMG_2's first columns, where the slicing folds its cubic onto the first lens of each row, alternate row by row
-      // in disparity and read 2.27 with it.
+      // Measured: confidence 1.45 / 1.34 / 1.72, disparity 1.61 / 1.50 / 1.43 (IMG_1-3; the thirty-seventh session's
+      // binary read IMG_2 1.63 / 1.41 and IMG_3 1.45 / 1.49, before the restoration's prior stopped taking luminance
+      // out as colour: IMG_3's confidence rose); noise reads about 1 and its largest over the few hundred bins looked
+      // at up to about 1.8. The measure leaves out the maps' 15 px frame: IMG_2's first columns, where the slicing
+      // folds its cubic onto the first lens of each row, alternate row by row in disparity and read 2.27 with it.
       EXPECT_GT(ratio, 0.0);
       EXPECT_LE(ratio, 2.0);
     }
@@ -60,7 +60,7 @@ TEST(RealFramesLattice, DepthMapsOfTheF01FramesShowNoLensLattice) {
       const nlohmann::json flattened = wta_peak(out / "segmentation.h5", "wta.pfm");
       RecordProperty("IMG_2_wta_disparity_block_gain_kept", std::to_string(with_gain.at("ratio").get<double>()));
       RecordProperty("IMG_2_wta_disparity", std::to_string(flattened.at("ratio").get<double>()));
-      EXPECT_GT(with_gain.at("ratio").get<double>(), 2.5);  // 3.21
+      EXPECT_GT(with_gain.at("ratio").get<double>(), 3.0);  // 3.21
       EXPECT_NEAR(with_gain.at("fy").get<double>(), 8.6 / 8.0 - 1.0, 0.01);
       EXPECT_LT(flattened.at("ratio").get<double>(), 2.0);  // 1.51
     }

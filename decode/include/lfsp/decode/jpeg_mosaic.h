@@ -48,7 +48,8 @@ struct MosaicRestoreOptions {
   // between these two scales (pixels) around each carrier is taken out at every iteration. The narrow one holds the
   // JPEG block pattern (8-px cycles and their harmonics); the wide one keeps the scene's colour. The narrow filter is
   // a Gaussian of narrow_sigma followed by the binomial (1, 2, 1) / 4 along each axis (together about 1.1 px at
-  // 0.85), so that no luminance passes as colour (jpeg_mosaic.cc, NarrowCarrierKernel).
+  // 0.85), whose zero at the Nyquist frequency keeps the luminance's local mean out of the demodulated colour
+  // (jpeg_mosaic.cc, NarrowCarrierKernel).
   double narrow_sigma = 0.85;
   double wide_sigma = 32.0;
 };

@@ -31,10 +31,15 @@ std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata);
 struct AutoWhiteBalanceReport {
   std::array<double, 3> start = {1.0, 1.0, 1.0};  // gains the search began from (the camera's)
   std::array<double, 3> gains = {1.0, 1.0, 1.0};  // what it settled on
-  // The grey tolerance (largest over smallest channel) the search started at: 1.3, or a looser one when too few
-  // pixels were grey under the start gains; it then went on at 1.3 from where the looser one settled.
+  // Grey tolerances (largest over smallest channel): the one the search started at (1.3, or a looser one when too few
+  // pixels were within 1.3x under the start gains; the last one tried when it kept the start gains), and the one the
+  // gains settled at (1.3 again after a looser start, unless too few pixels were grey there; 0 when the start gains
+  // were kept).
   double start_grey_ratio = 1.3;
-  double grey_fraction = 0.0;  // share of the well-lit pixels taken as grey in the last round
+  double settled_grey_ratio = 0.0;
+  // Share of the well-lit pixels taken as grey in the last round at the settled tolerance (start gains kept: in the
+  // round that found too few).
+  double grey_fraction = 0.0;
   int rounds = 0;
   bool kept_start = false;  // too few grey pixels: the start gains were kept
   nlohmann::json ToJson() const;
@@ -43,12 +48,12 @@ struct AutoWhiteBalanceReport {
 // Gains (R, G, B with G = 1) that make the capture's near-grey surfaces grey, in the manner of Huo et al., "Robust
 // automatic white balance algorithm using gray color points in images" (IEEE Trans. Consumer Electronics, 2006):
 // starting from `start`, the well-lit, unclipped pixels whose colour after the gains and `ccm` is close to neutral
-// are averaged in sensor RGB, the gains are set to make that average grey, and the selection is repeated until the
-// gains settle. Coloured scenes (foliage) keep their colour: only pixels already near grey vote. When too few are near
-// grey under `start` (a light far from the one `start` was made for), looser tolerances find the least coloured
-// surfaces first, and the search goes on at the strict one from there. `rgb` is the
-// devignetted, demosaicked sensor image (CV_32FC3, R G B), `grey_white` its white image (CV_32FC1, 1 at the
-// micro-image peak): only pixels with white >= 0.5 are used.
+// (channels within 1.3x) are averaged in sensor RGB, the gains are set to make that average grey, and the selection is
+// repeated until the gains settle. Coloured scenes (foliage) keep their colour: only pixels near grey vote. When too
+// few are within 1.3x under `start` (a light far from the one `start` was made for), a looser tolerance (1.6, then
+// 2.0) finds the least coloured surfaces first, and the search goes on at 1.3 from there. `rgb` is the devignetted,
+// demosaicked sensor image (CV_32FC3, R G B), `grey_white` its white image (CV_32FC1, 1 at the micro-image peak): only
+// pixels with white >= 0.5 are used.
 std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& grey_white,
                                            const std::array<double, 9>& ccm, const std::array<double, 3>& start,
                                            AutoWhiteBalanceReport* report = nullptr);
