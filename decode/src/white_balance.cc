@@ -47,7 +47,6 @@ struct GreySums {
 struct UsablePixels {
   std::vector<float> rgb;              // three per pixel
   std::vector<std::size_t> row_start;  // pixel index where each sampled row starts, and one past the last
-  std::size_t Count() const { return row_start.back(); }
 };
 
 UsablePixels GatherUsablePixels(const cv::Mat& rgb, const cv::Mat& grey_white, float clip_level) {
