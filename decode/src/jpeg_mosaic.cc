@@ -285,6 +285,12 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
   }
 }
 
+// Into the 0..255 a decoder clamps to, in place (a matrix expression would allocate two more sensor-size images).
+void ClampToCodes(cv::Mat& image) {
+  cv::min(image, 255.0f, image);
+  cv::max(image, 0.0f, image);
+}
+
 // The last step of the restoration: the prior once more after the last projection. That projection moves every
 // block back into its own bins on its own, so the point of the bins nearest a smooth colour carries a clamp per block:
 // the block pattern again, which the lens rows sample at a drifting phase (bands in the views). Ending on the prior
@@ -300,7 +306,7 @@ void EndOnThePrior(cv::Mat& image, double narrow_sigma, double wide_sigma) {
     if (pixels[i] >= kFullScale) clipped.emplace_back(i, pixels[i]);
   SmoothCarrierColour(image, narrow_sigma, wide_sigma);
   for (const auto& [index, value] : clipped) image.ptr<float>()[index] = value;
-  image = cv::max(cv::min(image, 255.0f), 0.0f);
+  ClampToCodes(image);
 }
 
 }  // namespace
@@ -340,7 +346,7 @@ cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRest
   if (options.iterations > 0) {
     EndOnThePrior(image, options.narrow_sigma, options.wide_sigma);
   } else {
-    image = cv::max(cv::min(image, 255.0f), 0.0f);
+    ClampToCodes(image);
   }
   if (report) {
     report->iterations = options.iterations;
