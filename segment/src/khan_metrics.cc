@@ -22,14 +22,64 @@ void RequireViewDisparity(const Labels& labels, const std::vector<DisparityMap>&
     throw Error(std::string(what) + ": need one disparity map per view");
 }
 
-// Where the Sobel gradient of the label map is non-zero (replicated border), as Khan et al.'s boundary images.
-cv::Mat SobelBoundary(const cv::Mat& labels) {
-  cv::Mat values, gx, gy;
-  labels.convertTo(values, CV_64F);  // exact: label values are far below 2^53
-  cv::Sobel(values, gx, CV_64F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
-  cv::Sobel(values, gy, CV_64F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
-  cv::Mat boundary = (gx != 0.0) | (gy != 0.0);
+// Where the Sobel gradient of the label map is non-zero (replicated border), as Khan et al.'s boundary images: 1 on
+// the boundary, 0 elsewhere. Computed in 64-bit integers, which is exact (label differences times the kernel's
+// weights stay far below 2^62), as cv::Sobel in doubles also is for labels below 2^50: the same pixels, without
+// converting each view to doubles and filtering it twice (0.130 -> 0.065 s for KhanBoundaryRecall on the Illum
+// capture's 9x9 views).
+std::vector<std::uint8_t> SobelBoundary(const std::int32_t* labels, int w, int h) {
+  std::vector<std::uint8_t> boundary(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  for (int y = 0; y < h; ++y) {
+    const std::int32_t* above = labels + std::max(y - 1, 0) * w;
+    const std::int32_t* row = labels + y * w;
+    const std::int32_t* below = labels + std::min(y + 1, h - 1) * w;
+    for (int x = 0; x < w; ++x) {
+      const int left = std::max(x - 1, 0), right = std::min(x + 1, w - 1);
+      const auto column = [&](int at) {
+        return std::int64_t{above[at]} + 2 * std::int64_t{row[at]} + std::int64_t{below[at]};
+      };
+      const auto line = [&](const std::int32_t* r) {
+        return std::int64_t{r[left]} + 2 * std::int64_t{r[x]} + std::int64_t{r[right]};
+      };
+      const std::int64_t gx = column(right) - column(left);
+      const std::int64_t gy = line(below) - line(above);
+      boundary[static_cast<std::size_t>(y) * w + x] = gx != 0 || gy != 0;
+    }
+  }
   return boundary;
+}
+
+// Pixels marked in `mask` with a pixel of `other` within `reach` (chessboard distance) inside the image: a count of
+// mask & dilate(other), the dilation by a (2 reach + 1)-square as cv::dilate takes it (nothing beyond the border).
+int CountNear(const std::vector<std::uint8_t>& mask, const std::vector<std::uint8_t>& other, int w, int h, int reach) {
+  // Along the rows first: wide[i] says whether `other` is set within `reach` columns of i.
+  std::vector<std::uint8_t> wide(other.size(), 0);
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* in = other.data() + static_cast<std::size_t>(y) * w;
+    std::uint8_t* out = wide.data() + static_cast<std::size_t>(y) * w;
+    int last = -(reach + 1);  // the last set column seen, scanning right; then the next, scanning left
+    for (int x = 0; x < w; ++x) {
+      if (in[x]) last = x;
+      out[x] = x - last <= reach;
+    }
+    last = w + reach;
+    for (int x = w - 1; x >= 0; --x) {
+      if (in[x]) last = x;
+      out[x] = out[x] || last - x <= reach;
+    }
+  }
+  int count = 0;
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* m = mask.data() + static_cast<std::size_t>(y) * w;
+    for (int x = 0; x < w; ++x) {
+      if (!m[x]) continue;
+      bool near = false;
+      for (int yy = std::max(0, y - reach); yy <= std::min(h - 1, y + reach) && !near; ++yy)
+        near = wide[static_cast<std::size_t>(yy) * w + x] != 0;
+      count += near;
+    }
+  }
+  return count;
 }
 
 }  // namespace
@@ -126,18 +176,17 @@ double KhanBoundaryRecall(const Labels& labels, const Labels& gt) {
     throw Error("boundary recall (Khan): the labels and the ground truth differ in shape");
   const LightFieldShape& shape = labels.shape();
   const int views = static_cast<int>(shape.Views());
-  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5));  // tolerance 2, chessboard
+  constexpr int kReach = 2;  // Khan's tolerance: a 5 x 5 square
   std::vector<double> recall(static_cast<std::size_t>(views), -1.0);
+  const int w = shape.width, h = shape.height;
 #pragma omp parallel for schedule(dynamic)
   for (int cam = 0; cam < views; ++cam) {
     const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-    const cv::Mat truth = SobelBoundary(gt.View(view));
-    const int total = cv::countNonZero(truth);
+    const std::vector<std::uint8_t> truth = SobelBoundary(gt.ViewData(view), w, h);
+    const long long total = std::count(truth.begin(), truth.end(), std::uint8_t{1});
     if (total == 0) continue;  // no boundary to recall (Khan's code would return NaN for the whole light field)
-    cv::Mat near, hit;
-    cv::dilate(SobelBoundary(labels.View(view)), near, window);
-    cv::bitwise_and(truth, near, hit);
-    recall[static_cast<std::size_t>(cam)] = static_cast<double>(cv::countNonZero(hit)) / total;
+    const int hit = CountNear(truth, SobelBoundary(labels.ViewData(view), w, h), w, h, kReach);
+    recall[static_cast<std::size_t>(cam)] = static_cast<double>(hit) / static_cast<double>(total);
   }
   double sum = 0.0;
   int counted = 0;

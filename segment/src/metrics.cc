@@ -534,30 +534,74 @@ double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity
   const ViewIndex c = shape.Centre();
   const std::int32_t* centre = labels.ViewData(c);
   const int w = shape.width, h = shape.height;
+  // Each side view's offset, labels and disparity, looked up once instead of per pixel.
+  struct SideView {
+    int du, dv;
+    const std::int32_t* labels;
+    const DisparityMap* disparity;
+  };
+  std::vector<SideView> sides;
+  for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+    if (view == c) continue;
+    sides.push_back(
+        {view.u - c.u, view.v - c.v, labels.ViewData(view), &view_disparity[static_cast<std::size_t>(cam)]});
+  }
+  // A band of centre rows at a time, view by view: the rows a band reaches in one side view are read from memory once
+  // and then from cache. Pixel by pixel, each pixel read its rays in all 80 views (0.16 s on the Illum capture's 9x9
+  // views; 0.07 s now). Each pixel keeps the distinct labels of its 3x3 window (most windows hold one or two) and the
+  // foreign ones found so far; how many there are does not depend on the order the views are visited in.
+  constexpr int kBandRows = 8;
+  constexpr int kWindow = 9;
+  const int bands = (h + kBandRows - 1) / kBandRows;
+  const int most_foreign = static_cast<int>(sides.size());
   double total = 0.0;
-#pragma omp parallel for schedule(dynamic, 8) reduction(+ : total)
-  for (int y0 = 0; y0 < h; ++y0) {
-    std::vector<std::int32_t> window, foreign;
-    for (int x0 = 0; x0 < w; ++x0) {
-      const float d = centre_disparity.at(y0, x0);
-      if (!std::isfinite(d)) continue;
-      window.clear();
-      foreign.clear();
-      for (int y = std::max(0, y0 - 1); y <= std::min(h - 1, y0 + 1); ++y) {
-        for (int x = std::max(0, x0 - 1); x <= std::min(w - 1, x0 + 1); ++x) window.push_back(centre[y * w + x]);
+#pragma omp parallel reduction(+ : total)
+  {
+    const std::size_t band_pixels = static_cast<std::size_t>(kBandRows) * static_cast<std::size_t>(w);
+    std::vector<std::int32_t> window(band_pixels * kWindow),
+        foreign(band_pixels * static_cast<std::size_t>(most_foreign));
+    std::vector<std::uint8_t> window_count(band_pixels);
+    std::vector<std::uint16_t> foreign_count(band_pixels);  // up to the side views: 224 for 15 x 15
+#pragma omp for schedule(dynamic)
+    for (int band = 0; band < bands; ++band) {
+      const int top = band * kBandRows, bottom = std::min(h, top + kBandRows);
+      for (int y0 = top; y0 < bottom; ++y0) {
+        for (int x0 = 0; x0 < w; ++x0) {
+          const std::size_t p = static_cast<std::size_t>(y0 - top) * static_cast<std::size_t>(w) + x0;
+          std::int32_t* distinct = &window[p * kWindow];
+          int count = 0;
+          for (int y = std::max(0, y0 - 1); y <= std::min(h - 1, y0 + 1); ++y)
+            for (int x = std::max(0, x0 - 1); x <= std::min(w - 1, x0 + 1); ++x)
+              if (std::find(distinct, distinct + count, centre[y * w + x]) == distinct + count)
+                distinct[count++] = centre[y * w + x];
+          window_count[p] = static_cast<std::uint8_t>(count);
+          foreign_count[p] = 0;
+        }
       }
-      for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
-        const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
-        if (view == c) continue;
-        const int x = RoundHalfAway(x0 - (view.u - c.u) * d);
-        const int y = RoundHalfAway(y0 - (view.v - c.v) * d);
-        if (x < 0 || y < 0 || x >= w || y >= h) continue;
-        if (std::abs(view_disparity[static_cast<std::size_t>(cam)].at(y, x) - d) > 0.5f) continue;  // occluded
-        const std::int32_t k = labels.ViewData(view)[y * w + x];
-        if (std::find(window.begin(), window.end(), k) != window.end()) continue;
-        if (std::find(foreign.begin(), foreign.end(), k) == foreign.end()) foreign.push_back(k);
+      for (const SideView& side : sides) {
+        for (int y0 = top; y0 < bottom; ++y0) {
+          for (int x0 = 0; x0 < w; ++x0) {
+            const float d = centre_disparity.at(y0, x0);
+            if (!std::isfinite(d)) continue;
+            const int x = RoundHalfAway(x0 - side.du * d);
+            const int y = RoundHalfAway(y0 - side.dv * d);
+            if (x < 0 || y < 0 || x >= w || y >= h) continue;
+            if (std::abs(side.disparity->at(y, x) - d) > 0.5f) continue;  // occluded
+            const std::int32_t k = side.labels[y * w + x];
+            const std::size_t p = static_cast<std::size_t>(y0 - top) * static_cast<std::size_t>(w) + x0;
+            const std::int32_t* distinct = &window[p * kWindow];
+            if (std::find(distinct, distinct + window_count[p], k) != distinct + window_count[p]) continue;
+            std::int32_t* found = &foreign[p * static_cast<std::size_t>(most_foreign)];
+            if (std::find(found, found + foreign_count[p], k) == found + foreign_count[p])
+              found[foreign_count[p]++] = k;
+          }
+        }
       }
-      total += static_cast<double>(foreign.size());
+      for (int y0 = top; y0 < bottom; ++y0)
+        for (int x0 = 0; x0 < w; ++x0)
+          if (std::isfinite(centre_disparity.at(y0, x0)))
+            total += static_cast<double>(foreign_count[static_cast<std::size_t>(y0 - top) * w + x0]);
     }
   }
   return 1.0 + total / (static_cast<double>(w) * h);

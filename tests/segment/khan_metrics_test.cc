@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "lfsp/segment/khan_metrics.h"
@@ -91,6 +92,53 @@ TEST(KhanBoundaryRecall, UsesTheSobelBandOfBothMapsWithToleranceTwo) {
   EXPECT_DOUBLE_EQ(KhanBoundaryRecall(shifted, gt), 0.5);
   const Labels none = MakeLabels(3, 3, 12, 6, [](ViewIndex, int, int) { return 3; });
   EXPECT_DOUBLE_EQ(KhanBoundaryRecall(none, gt), 0.0);
+}
+
+// Khan's boundary recall as his code computes it, with OpenCV: the Sobel gradient of each view's labels in doubles
+// (replicated border), its non-zero pixels, the estimate's dilated by a 5 x 5 square; recall per view, averaged over
+// the views with a boundary.
+double KhanBoundaryRecallWithOpenCv(const Labels& labels, const Labels& gt) {
+  const auto boundary = [](const cv::Mat& view) {
+    cv::Mat values, gx, gy;
+    view.convertTo(values, CV_64F);
+    cv::Sobel(values, gx, CV_64F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+    cv::Sobel(values, gy, CV_64F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+    return cv::Mat((gx != 0.0) | (gy != 0.0));
+  };
+  double sum = 0.0;
+  int counted = 0;
+  for (int cam = 0; cam < static_cast<int>(labels.shape().Views()); ++cam) {
+    const ViewIndex view = ViewFromCameraNumber(cam, labels.shape().nu);
+    const cv::Mat truth = boundary(gt.View(view));
+    if (cv::countNonZero(truth) == 0) continue;
+    cv::Mat near, hit;
+    cv::dilate(boundary(labels.View(view)), near, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+    cv::bitwise_and(truth, near, hit);
+    sum += static_cast<double>(cv::countNonZero(hit)) / cv::countNonZero(truth);
+    ++counted;
+  }
+  return sum / counted;
+}
+
+// KhanBoundaryRecall finds the same pixels in integers: on random labels with ids that make the Sobel sums cancel
+// (1, 2, 3 around a pixel), wide ids, blocks reaching the border and views without any boundary.
+TEST(KhanBoundaryRecall, MatchesTheSobelFormulationOnRandomLabels) {
+  std::mt19937 random(29);
+  for (const int spread : {1, 2, 1000003}) {
+    std::uniform_int_distribution<int> id(0, 3), block(1, 4);
+    Labels labels(LightFieldShape{3, 3, 23, 17, 1}), gt(labels.shape());
+    for (Labels* target : {&labels, &gt})
+      for (int cam = 0; cam < 9; ++cam) {
+        const ViewIndex view = ViewFromCameraNumber(cam, 3);
+        const int size = block(random);
+        for (int y = 0; y < 17; ++y)
+          for (int x = 0; x < 23; ++x)
+            target->at(view, y, x) = (cam == 4 && target == &gt) ? 7 : id(random) * spread * (x / size + y / size);
+      }
+    const double recall = KhanBoundaryRecall(labels, gt);
+    EXPECT_GT(recall, 0.0);
+    EXPECT_EQ(recall, KhanBoundaryRecallWithOpenCv(labels, gt)) << "spread " << spread;
+  }
 }
 
 TEST(KhanAchievableAccuracy, GivesEachSuperpixelOneObjectForTheWholeLightField) {

@@ -5,8 +5,11 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <random>
+#include <set>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/rounding.h"
 #include "lfsp/segment/metrics.h"
 
 namespace lfsp::segment {
@@ -180,6 +183,55 @@ TEST(LabelsPerPixel, ByHandOnAConstantDisparityRow) {
   SetView(consistent, 1, Columns(8, 4, 4));
   SetView(consistent, 2, Columns(8, 4, 2));
   EXPECT_NEAR(LabelsPerPixel(consistent, disparity, views), 1.0, 1e-12);
+}
+
+// Labels per pixel as the definition reads, centre pixel by centre pixel: the labels of the other views' rays that
+// see it (through its disparity, where the view's own disparity agrees within 0.5) and that its 3 x 3 centre window
+// does not hold, counted once each.
+double LabelsPerPixelByDefinition(const Labels& labels, const DisparityMap& centre_disparity,
+                                  const std::vector<DisparityMap>& views) {
+  const LightFieldShape& shape = labels.shape();
+  const ViewIndex c = shape.Centre();
+  double total = 0.0;
+  for (int y0 = 0; y0 < shape.height; ++y0)
+    for (int x0 = 0; x0 < shape.width; ++x0) {
+      const float d = centre_disparity.at(y0, x0);
+      if (!std::isfinite(d)) continue;
+      std::set<std::int32_t> window, foreign;
+      for (int y = std::max(0, y0 - 1); y <= std::min(shape.height - 1, y0 + 1); ++y)
+        for (int x = std::max(0, x0 - 1); x <= std::min(shape.width - 1, x0 + 1); ++x)
+          window.insert(labels.at(c, y, x));
+      for (int cam = 0; cam < static_cast<int>(shape.Views()); ++cam) {
+        const ViewIndex view = ViewFromCameraNumber(cam, shape.nu);
+        if (view == c) continue;
+        const int x = RoundHalfAway(x0 - (view.u - c.u) * d), y = RoundHalfAway(y0 - (view.v - c.v) * d);
+        if (x < 0 || y < 0 || x >= shape.width || y >= shape.height) continue;
+        if (std::abs(views[static_cast<std::size_t>(cam)].at(y, x) - d) > 0.5f) continue;
+        if (!window.count(labels.at(view, y, x))) foreign.insert(labels.at(view, y, x));
+      }
+      total += static_cast<double>(foreign.size());
+    }
+  return 1.0 + total / (static_cast<double>(shape.width) * shape.height);
+}
+
+// The banded, view-by-view count gives the definition's value on random labels and disparities (two surfaces, so
+// some rays are occluded, and a few unknown disparities), with a view size that is not a multiple of the band.
+TEST(LabelsPerPixel, MatchesTheDefinitionOnRandomLabels) {
+  std::mt19937 random(41);
+  std::uniform_int_distribution<int> id(0, 5);
+  std::uniform_real_distribution<float> near(0.9f, 1.6f), far(-1.2f, -0.4f);
+  const LightFieldShape shape{5, 5, 27, 19, 1};
+  DisparityMap disparity(shape.width, shape.height);
+  for (int y = 0; y < shape.height; ++y)
+    for (int x = 0; x < shape.width; ++x)
+      disparity.at(y, x) =
+          (x + y) % 11 == 0 ? std::numeric_limits<float>::quiet_NaN() : (x < 12 ? near(random) : far(random));
+  const std::vector<DisparityMap> views = PropagateDisparity(disparity, shape);
+  Labels labels(shape);
+  for (std::size_t i = 0; i < labels.size(); ++i) labels.data()[i] = id(random);
+  const double count = LabelsPerPixel(labels, disparity, views);
+  EXPECT_GT(count, 1.5);
+  EXPECT_EQ(count, LabelsPerPixelByDefinition(labels, disparity, views));
 }
 
 TEST(Metrics4D, AverageOverViews) {
