@@ -53,8 +53,13 @@ WhiteSource WhiteFromCapture(const RawInput& input, const LensletGrid& grid, con
   white.metadata = input.metadata;
   white.metadata.source = input.path.string() + " (white image estimated from the capture)";
   white.estimated = true;
-  white.summary = {{"name", "estimated from the capture"}, {"path", input.path.string()}, {"why", why},
-                   {"lenses_used", report.lenses_used},    {"lenses", report.lenses},     {"tiles", report.tiles}};
+  white.summary = {{"name", "estimated from the capture"},
+                   {"path", input.path.string()},
+                   {"why", why},
+                   {"lenses_used", report.lenses_used},
+                   {"lenses", report.lenses},
+                   {"tiles", report.tiles},
+                   {"shifted_rows_rim_ratio", report.shifted_rows_rim_ratio}};
   return white;
 }
 

@@ -24,10 +24,12 @@
 //   of the sensor (the micro-image changes shape towards the corners of real cameras) only scales that profile by
 //   a smooth even low-order surface fitted to its own coarse profile: a full profile per tile was noise at this
 //   resolution.
+// On a hexagonal lattice the shifted and the unshifted lens rows each get their own profile as well (kRowKinds).
 
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -75,8 +77,16 @@ std::array<double, 4> PhaseResponse(const LytroMetadata& metadata, BayerPattern 
   return response;
 }
 
-// Per offset bin and tile: the sum of pixel values and the sum of the brightness of the lenses they came from
-// (their ratio is the profile).
+// The hexagonal lattice's two kinds of lens rows, unshifted and shifted by half a pitch (HexLattice::Shift). On the
+// real F01 frames their micro-images differ: at 4 px from the centre along the row, the shifted rows' are 1.0-1.5 %
+// brighter relative to their centres than the unshifted rows' (IMG_1-3, the same in every ninth of the sensor), where
+// the simulator's are the same. One profile for both left that difference in the views as rows alternating in
+// brightness, 6-8 times stronger in the outermost views than in the centre one (BENCHMARKS.md, thirty-ninth
+// session). Each kind of row gets its own correction of the profile.
+constexpr int kRowKinds = 2;
+
+// Per offset bin, tile and kind of row: the sum of pixel values and the sum of the brightness of the lenses they
+// came from (their ratio is the profile).
 struct ProfileAccumulator {
   int bins = 0;   // per axis
   int tiles = 0;  // per axis
@@ -86,10 +96,12 @@ struct ProfileAccumulator {
       : bins(bins_per_axis),
         tiles(tiles_per_axis),
         sum(static_cast<std::size_t>(bins_per_axis) * static_cast<std::size_t>(bins_per_axis) *
-                static_cast<std::size_t>(tiles_per_axis) * static_cast<std::size_t>(tiles_per_axis),
+                static_cast<std::size_t>(tiles_per_axis) * static_cast<std::size_t>(tiles_per_axis) * kRowKinds,
             0.0),
         weight(sum.size(), 0.0) {}
-  std::size_t Index(int tile, int by, int bx) const { return (static_cast<std::size_t>(tile) * bins + by) * bins + bx; }
+  std::size_t Index(int tile, int row_kind, int by, int bx) const {
+    return ((static_cast<std::size_t>(tile) * kRowKinds + static_cast<std::size_t>(row_kind)) * bins + by) * bins + bx;
+  }
   void Merge(const ProfileAccumulator& other) {
     for (std::size_t n = 0; n < sum.size(); ++n) {
       sum[n] += other.sum[n];
@@ -107,12 +119,12 @@ struct ProfileAccumulator {
   return (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) + ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
 }
 
-// Adds one lens's micro-image; false (nothing added) when it is clipped, off the sensor or has an empty phase. The
-// lens's brightness per Bayer phase is its core's least-squares scale of `first_pass` (a profile on the
-// accumulator's bins), or the core's plain mean without one. Built twice (AVX2 and generic) and chosen at run time:
-// with SSE4.1 and later the profile lookup's floor is an instruction instead of a library call.
+// Adds one lens's micro-image (of a `tile` and a `row_kind`); false (nothing added) when it is clipped, off the sensor
+// or has an empty phase. The lens's brightness per Bayer phase is its core's least-squares scale of `first_pass` (a
+// profile on the accumulator's bins), or the core's plain mean without one. Built twice (AVX2 and generic) and chosen
+// at run time: with SSE4.1 and later the profile lookup's floor is an instruction instead of a library call.
 __attribute__((target_clones("avx2", "default"))) bool AddLens(const cv::Mat& levelled, double cx, double cy,
-                                                               double reach, double core, int tile,
+                                                               double reach, double core, int tile, int row_kind,
                                                                const cv::Mat* first_pass,
                                                                ProfileAccumulator& accumulator) {
   const int x0 = static_cast<int>(std::floor(cx - reach)), x1 = static_cast<int>(std::ceil(cx + reach));
@@ -148,7 +160,7 @@ __attribute__((target_clones("avx2", "default"))) bool AddLens(const cv::Mat& le
       const int bx = RoundHalfAway(dx / kBinPixels + half);
       const int by = RoundHalfAway(dy / kBinPixels + half);
       if (bx < 0 || by < 0 || bx >= accumulator.bins || by >= accumulator.bins) continue;
-      const std::size_t n = accumulator.Index(tile, by, bx);
+      const std::size_t n = accumulator.Index(tile, row_kind, by, bx);
       // Sums, not a mean of ratios: a dim lens beside a bright one (whose light reaches the cell's edge) would
       // otherwise weigh as much as any other.
       accumulator.sum[n] += row[x];
@@ -214,17 +226,37 @@ TileCorrection FitTileCorrection(const cv::Mat& tile_sum, const cv::Mat& tile_we
   return solution;
 }
 
-// Every tile's profile: the whole sensor's (normalised convolution of all tiles' sums, kProfileSmoothPixels) times
-// the tile's low-order correction; tiles with too few lenses take the whole sensor's profile as it is.
-std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator) {
+// Every tile's profile for each kind of row, indexed tile * kRowKinds + kind: the whole sensor's (normalised
+// convolution of all the sums, kProfileSmoothPixels) times the tile's low-order correction (both kinds of row
+// together; tiles with too few lenses take none) times the kind of row's profile over the whole sensor's, both
+// smoothed like a tile's (kTileSmoothPixels: half the sensor's lenses make each, so the ratio needs no low-order
+// model; on the simulator it stays within 1e-4 of 1). `row_kind_ratios`, if given, receives those two ratios.
+std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator,
+                                  std::array<cv::Mat, kRowKinds>* row_kind_ratios = nullptr) {
   const int bins = accumulator.bins, tiles = accumulator.tiles;
+  const auto bins_of = [&](const std::vector<double>& values, int tile, int kind) {
+    return BinsToMat(&values[accumulator.Index(tile, kind, 0, 0)], bins);
+  };
   cv::Mat whole_sum = cv::Mat::zeros(bins, bins, CV_64F), whole_weight = cv::Mat::zeros(bins, bins, CV_64F);
-  std::vector<cv::Mat> sums, weights;
+  std::vector<cv::Mat> sums(static_cast<std::size_t>(tiles * tiles)), weights(sums.size());
+  std::array<cv::Mat, kRowKinds> kind_sums, kind_weights;
+  for (int kind = 0; kind < kRowKinds; ++kind) {
+    kind_sums[static_cast<std::size_t>(kind)] = cv::Mat::zeros(bins, bins, CV_64F);
+    kind_weights[static_cast<std::size_t>(kind)] = cv::Mat::zeros(bins, bins, CV_64F);
+  }
   for (int t = 0; t < tiles * tiles; ++t) {
-    sums.push_back(BinsToMat(&accumulator.sum[accumulator.Index(t, 0, 0)], bins));
-    weights.push_back(BinsToMat(&accumulator.weight[accumulator.Index(t, 0, 0)], bins));
-    whole_sum += sums.back();
-    whole_weight += weights.back();
+    const auto k = static_cast<std::size_t>(t);
+    sums[k] = cv::Mat::zeros(bins, bins, CV_64F);
+    weights[k] = cv::Mat::zeros(bins, bins, CV_64F);
+    for (int kind = 0; kind < kRowKinds; ++kind) {
+      const cv::Mat sum = bins_of(accumulator.sum, t, kind), weight = bins_of(accumulator.weight, t, kind);
+      sums[k] += sum;
+      weights[k] += weight;
+      kind_sums[static_cast<std::size_t>(kind)] += sum;
+      kind_weights[static_cast<std::size_t>(kind)] += weight;
+    }
+    whole_sum += sums[k];
+    whole_weight += weights[k];
   }
   const cv::Mat whole_coarse = SmoothedProfile(whole_sum, whole_weight, kTileSmoothPixels);
   const cv::Mat fine = SmoothedProfile(whole_sum, whole_weight, kProfileSmoothPixels);
@@ -234,20 +266,36 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator) {
     std::nth_element(totals.begin(), totals.begin() + static_cast<std::ptrdiff_t>(totals.size() / 2), totals.end());
     return totals[totals.size() / 2];
   }();
+  // Each kind of row's profile over the whole sensor's, smoothed like a tile's (kTileSmoothPixels), where the
+  // micro-image is lit (1 elsewhere).
+  double peak = 0.0;
+  cv::minMaxLoc(whole_coarse, nullptr, &peak);
+  std::array<cv::Mat, kRowKinds> kind_ratio;
+  for (std::size_t kind = 0; kind < kRowKinds; ++kind) {
+    const cv::Mat coarse = SmoothedProfile(kind_sums[kind], kind_weights[kind], kTileSmoothPixels);
+    kind_ratio[kind] = cv::Mat::ones(bins, bins, CV_64F);
+    for (int y = 0; y < bins; ++y)
+      for (int x = 0; x < bins; ++x)
+        if (whole_coarse.at<double>(y, x) > 0.2 * peak)
+          kind_ratio[kind].at<double>(y, x) = coarse.at<double>(y, x) / whole_coarse.at<double>(y, x);
+  }
   const double centre = 0.5 * (bins - 1);
   std::vector<cv::Mat> profiles;
   for (int t = 0; t < tiles * tiles; ++t) {
     const auto k = static_cast<std::size_t>(t);
     const bool sparse = cv::sum(weights[k])[0] < 0.25 * median_weight;
     const TileCorrection c = sparse ? NoCorrection() : FitTileCorrection(sums[k], weights[k], whole_coarse);
-    cv::Mat profile(bins, bins, CV_32F);
-    for (int y = 0; y < bins; ++y)
-      for (int x = 0; x < bins; ++x) {
-        const double scale = c.dot(CorrectionBasis((x - centre) * kBinPixels, (y - centre) * kBinPixels));
-        profile.at<float>(y, x) = static_cast<float>(fine.at<double>(y, x) * scale);
-      }
-    profiles.push_back(profile);
+    for (const cv::Mat& ratio : kind_ratio) {
+      cv::Mat profile(bins, bins, CV_32F);
+      for (int y = 0; y < bins; ++y)
+        for (int x = 0; x < bins; ++x) {
+          const double scale = c.dot(CorrectionBasis((x - centre) * kBinPixels, (y - centre) * kBinPixels));
+          profile.at<float>(y, x) = static_cast<float>(fine.at<double>(y, x) * scale * ratio.at<double>(y, x));
+        }
+      profiles.push_back(profile);
+    }
   }
+  if (row_kind_ratios) *row_kind_ratios = kind_ratio;
   return profiles;
 }
 
@@ -258,13 +306,13 @@ std::vector<cv::Mat> GainProfiles(std::vector<cv::Mat> profiles) {
   return profiles;
 }
 
-// One patch [x0, x1) x [y0, y1) of the synthesised white image: each pixel takes `profile` (on the accumulator's
-// bins, `half` its centre bin) at its offset from the nearest lens (NearestLensAt, as LensLabels; lattice coordinates
-// stepped along rows), scaled to the phase's raw levels. Built twice (AVX2 and generic) and chosen at run time: with
-// SSE4.1 and later floor and nearbyint are instructions instead of library calls; the rounding is RoundHalfAway's
-// (std::lround's, without the call).
-__attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const cv::Mat& profile, const LensletGrid& grid,
-                                                                       double half,
+// One patch [x0, x1) x [y0, y1) of the synthesised white image: each pixel takes the profile of its nearest lens's
+// kind of row (`profiles`, on the accumulator's bins, `half` their centre bin) at its offset from that lens
+// (NearestLensAt, as LensLabels; lattice coordinates stepped along rows), scaled to the phase's raw levels. Built twice
+// (AVX2 and generic) and chosen at run time: with SSE4.1 and later floor and nearbyint are instructions instead of
+// library calls; the rounding is RoundHalfAway's (std::lround's, without the call).
+__attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const std::array<cv::Mat, kRowKinds>& profiles,
+                                                                       const LensletGrid& grid, double half,
                                                                        const std::array<float, 4>& phase_black,
                                                                        const std::array<float, 4>& phase_scale, int x0,
                                                                        int x1, int y0, int y1, RawImage& white) {
@@ -281,6 +329,7 @@ __attribute__((target_clones("avx2", "default"))) void SynthesisePatch(const cv:
       const double offset_along = nearest.offset_along, offset_across = nearest.offset_across;
       const double fx = (c * offset_along - sn * offset_across) / kBinPixels + half;
       const double fy = (sn * offset_along + c * offset_across) / kBinPixels + half;
+      const cv::Mat& profile = profiles[static_cast<std::size_t>(grid.Shift(nearest.j))];
       const float value = std::clamp(Bilinear(profile, fx, fy), 0.0f, 1.2f);
       const auto phase = static_cast<std::size_t>(BayerPhase(x, y));
       // RoundHalfAway answers the smallest int beyond +-2e9, where lround's clamp gave 65535 above (levels that
@@ -334,9 +383,10 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
             grid.Centre(i, j, cx, cy);
             const int tx = std::clamp(static_cast<int>(cx / grid.sensor_width * tiles), 0, tiles - 1);
             const int ty = std::clamp(static_cast<int>(cy / grid.sensor_height * tiles), 0, tiles - 1);
-            const int tile = ty * tiles + tx;
-            const cv::Mat* profile = first_pass ? &(*first_pass)[static_cast<std::size_t>(tile)] : nullptr;
-            if (AddLens(levelled, cx, cy, reach, core, tile, profile, partial.profile)) ++partial.used;
+            const int tile = ty * tiles + tx, kind = grid.Shift(j);
+            const cv::Mat* profile =
+                first_pass ? &(*first_pass)[static_cast<std::size_t>(tile * kRowKinds + kind)] : nullptr;
+            if (AddLens(levelled, cx, cy, reach, core, tile, kind, profile, partial.profile)) ++partial.used;
           }
         },
         [](Partial& into, const Partial& from) {
@@ -351,7 +401,8 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
                 ") to estimate the white image from the capture");
   const std::vector<cv::Mat> first_profiles = TileProfiles(first.profile);
   const std::vector<cv::Mat> gain_profiles = GainProfiles(first_profiles);
-  const std::vector<cv::Mat> profiles = TileProfiles(accumulate(&gain_profiles).profile);
+  std::array<cv::Mat, kRowKinds> row_kind_ratios;
+  const std::vector<cv::Mat> profiles = TileProfiles(accumulate(&gain_profiles).profile, &row_kind_ratios);
 
   // 2. Synthesise: each pixel takes the profile at its offset from the nearest lens, blended between tile centres.
   const std::array<double, 4> response = PhaseResponse(metadata, format.mosaic);
@@ -382,17 +433,28 @@ RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetad
     const int tx0 = static_cast<int>(tx), ty0 = static_cast<int>(ty);
     const int tx1 = std::min(tx0 + 1, tiles - 1), ty1 = std::min(ty0 + 1, tiles - 1);
     const double ax = tx - tx0, ay = ty - ty0;
-    auto tile = [&](int t_y, int t_x) -> const cv::Mat& {
-      return profiles[static_cast<std::size_t>(t_y * tiles + t_x)];
-    };
-    cv::Mat profile = (1 - ay) * (1 - ax) * tile(ty0, tx0) + (1 - ay) * ax * tile(ty0, tx1) +
-                      ay * (1 - ax) * tile(ty1, tx0) + ay * ax * tile(ty1, tx1);
-    SynthesisePatch(profile, grid, half, phase_black, phase_scale, x0, x1, y0, y1, white);
+    std::array<cv::Mat, kRowKinds> blended;
+    for (int kind = 0; kind < kRowKinds; ++kind) {
+      auto tile = [&](int t_y, int t_x) -> const cv::Mat& {
+        return profiles[static_cast<std::size_t>((t_y * tiles + t_x) * kRowKinds + kind)];
+      };
+      blended[static_cast<std::size_t>(kind)] = (1 - ay) * (1 - ax) * tile(ty0, tx0) + (1 - ay) * ax * tile(ty0, tx1) +
+                                                ay * (1 - ax) * tile(ty1, tx0) + ay * ax * tile(ty1, tx1);
+    }
+    SynthesisePatch(blended, grid, half, phase_black, phase_scale, x0, x1, y0, y1, white);
   }
   if (report) {
     report->lenses = static_cast<int>(lenses);
     report->lenses_used = static_cast<int>(used);
     report->tiles = tiles;
+    // The shifted rows' profile over the unshifted rows' at 0.4 spacings along the row on either side (the sensor's
+    // x axis: the lens rows are within a few milliradians of it), averaged.
+    const int centre_bin = (bins - 1) / 2, step = static_cast<int>(std::lround(0.4 * grid.spacing_x / kBinPixels));
+    double ratio = 0.0;
+    for (const int side : {-step, step})
+      ratio += 0.5 * row_kind_ratios[1].at<double>(centre_bin, centre_bin + side) /
+               row_kind_ratios[0].at<double>(centre_bin, centre_bin + side);
+    report->shifted_rows_rim_ratio = ratio;
   }
   return white;
 }
