@@ -35,7 +35,7 @@ using Complex = std::complex<double>;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kHalfSqrt3 = 0.86602540378443864676;
 constexpr double kMinPeakContrast = 100.0;  // whitened power each first-ring peak of a lattice must reach
-const cv::Matx13f kBinomial3(0.25f, 0.5f, 0.25f);
+const cv::Matx<float, 1, 5> kBinomial5(0.0625f, 0.25f, 0.375f, 0.25f, 0.0625f);  // [1 4 6 4 1] / 16
 
 struct Frequency {
   double x = 0.0;  // cycles per pixel
@@ -62,11 +62,16 @@ double Wrap(double phase) { return std::remainder(phase, kTwoPi); }
 //
 // The Bayer pattern goes first: a coloured scene leaves a checkerboard of bright and dark pixels inside the discs,
 // which the cut at the mean would turn from a Nyquist-frequency pattern (that neither the spectrum nor the block
-// demodulation sees) into dark specks that move the phase (IMG_3: 0.1 px). [1 2 1] / 4 along both axes has its
-// zero at the Nyquist frequency, keeps 88 % of the lattice's first ring and moves nothing.
+// demodulation sees) into dark specks that move the phase (IMG_3: 0.1 px). Its colour also follows each disc's
+// vignetting, which puts sidebands at the Nyquist frequency minus the lattice's first ring (0.38-0.40 cycles per px),
+// and the cut at the mean mixes those into the lattice's own frequencies. [1 2 1] / 4 along both axes (zero at the
+// Nyquist frequency) passed 10-13 % of them, and the real F01 frames' spacing then depended on their colour: found in
+// the restored mosaic instead of the plain JPEG decode, 2-8e-4 px per lens shorter, p95 against the camera's lens
+// table 0.723 / 0.726 / 0.757 px on IMG_1-3. [1 4 6 4 1] / 16, the same filter twice, passes 1-1.6 % of them and 76 %
+// of the first ring: 0.4-2.3e-4 px apart, p95 0.709 / 0.731 / 0.739 (BENCHMARKS.md, thirty-ninth session).
 cv::Mat LocalContrast(const cv::Mat& grey, double spacing) {
   cv::Mat smooth;
-  cv::sepFilter2D(grey, smooth, CV_32F, kBinomial3, kBinomial3, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
+  cv::sepFilter2D(grey, smooth, CV_32F, kBinomial5, kBinomial5, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
   const int box = 2 * static_cast<int>(std::lround(spacing)) + 1;
   cv::Mat local;
   cv::blur(smooth, local, cv::Size(box, box), cv::Point(-1, -1), cv::BORDER_REFLECT);
