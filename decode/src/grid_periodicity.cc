@@ -65,10 +65,9 @@ double Wrap(double phase) { return std::remainder(phase, kTwoPi); }
 // demodulation sees) into dark specks that move the phase (IMG_3: 0.1 px). Its colour also follows each disc's
 // vignetting, which puts sidebands at the Nyquist frequency minus the lattice's first ring (0.38-0.40 cycles per px),
 // and the cut at the mean mixes those into the lattice's own frequencies. [1 2 1] / 4 along both axes (zero at the
-// Nyquist frequency) passed 10-13 % of them, and the real F01 frames' spacing then depended on their colour: found in
-// the restored mosaic instead of the plain JPEG decode, 2-8e-4 px per lens shorter, p95 against the camera's lens
-// table 0.723 / 0.726 / 0.757 px on IMG_1-3. [1 4 6 4 1] / 16, the same filter twice, passes 1-1.6 % of them and 76 %
-// of the first ring: 0.4-2.3e-4 px apart, p95 0.709 / 0.731 / 0.739 (BENCHMARKS.md, thirty-ninth session).
+// Nyquist frequency) passed 9.5-13 % of them, and the real F01 frames' spacing then depended on their colour (the
+// restored mosaic's against the plain JPEG decode's). [1 4 6 4 1] / 16, the same filter twice, passes 0.9-1.6 % of
+// them and 76 % of the lattice's first ring (BENCHMARKS.md, thirty-ninth session).
 cv::Mat LocalContrast(const cv::Mat& grey, double spacing) {
   cv::Mat smooth;
   cv::sepFilter2D(grey, smooth, CV_32F, kBinomial5, kBinomial5, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);

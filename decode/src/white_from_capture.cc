@@ -61,6 +61,9 @@ constexpr double kCoreFraction = 0.3;    // core radius (fitted brightness) as a
 constexpr double kReachFraction = 0.62;  // profile radius: beyond the hexagonal cell's corner (spacing / sqrt(3))
 constexpr float kSaturated = 0.98f;      // levelled value from which a pixel counts as clipped
 constexpr double kWhiteLevel = 0.6;      // the synthetic white's core level, as a fraction of the raw range
+// Where the whole sensor's coarse profile is above this fraction of its peak, the micro-image counts as lit: only there
+// are a tile's and a kind of row's profiles compared with it.
+constexpr double kLitFraction = 0.2;
 
 // The sensor's response per Bayer phase relative to green: normalizedResponses when the metadata has them, else
 // the inverse of the white-balance gains, else flat.
@@ -78,11 +81,11 @@ std::array<double, 4> PhaseResponse(const LytroMetadata& metadata, BayerPattern 
 }
 
 // The hexagonal lattice's two kinds of lens rows, unshifted and shifted by half a pitch (HexLattice::Shift). On the
-// real F01 frames their micro-images differ: at 4 px from the centre along the row, the shifted rows' are 1.0-1.5 %
-// brighter relative to their centres than the unshifted rows' (IMG_1-3, the same in every ninth of the sensor), where
-// the simulator's are the same. One profile for both left that difference in the views as rows alternating in
-// brightness, 6-8 times stronger in the outermost views than in the centre one (BENCHMARKS.md, thirty-ninth
-// session). Each kind of row gets its own correction of the profile.
+// real F01 frames their micro-images differ: at 0.4 spacings (4 px) along the row, relative to their centres, the
+// shifted rows' are 1.1-1.3 % brighter than the unshifted rows' (IMG_1-3; alike in every ninth of the sensor on IMG_1
+// and IMG_2), where the simulator's are the same. One profile for both left that difference in the views as rows
+// alternating in brightness, 7-9 times stronger in the outermost views than in the centre one (BENCHMARKS.md,
+// thirty-ninth session). Each kind of row gets its own ratio to the whole profile.
 constexpr int kRowKinds = 2;
 
 // Per offset bin, tile and kind of row: the sum of pixel values and the sum of the brightness of the lenses they
@@ -216,7 +219,7 @@ TileCorrection FitTileCorrection(const cv::Mat& tile_sum, const cv::Mat& tile_we
   for (int y = 0; y < tile.rows; ++y)
     for (int x = 0; x < tile.cols; ++x) {
       const double whole = whole_coarse.at<double>(y, x), w = weight.at<double>(y, x);
-      if (whole < 0.2 * peak || !(w > 0.0)) continue;
+      if (whole < kLitFraction * peak || !(w > 0.0)) continue;
       const TileCorrection basis = CorrectionBasis((x - centre) * kBinPixels, (y - centre) * kBinPixels);
       right += w * (tile.at<double>(y, x) / whole) * basis;
       normal += w * basis * basis.t();
@@ -276,7 +279,7 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator,
     kind_ratio[kind] = cv::Mat::ones(bins, bins, CV_64F);
     for (int y = 0; y < bins; ++y)
       for (int x = 0; x < bins; ++x)
-        if (whole_coarse.at<double>(y, x) > 0.2 * peak)
+        if (whole_coarse.at<double>(y, x) > kLitFraction * peak)
           kind_ratio[kind].at<double>(y, x) = coarse.at<double>(y, x) / whole_coarse.at<double>(y, x);
   }
   const double centre = 0.5 * (bins - 1);

@@ -25,7 +25,7 @@ void RequireViewDisparity(const Labels& labels, const std::vector<DisparityMap>&
 // Where the Sobel gradient of the label map is non-zero (replicated border), as Khan et al.'s boundary images: 1 on
 // the boundary, 0 elsewhere. Computed in 64-bit integers, which is exact (label differences times the kernel's
 // weights stay far below 2^62), as cv::Sobel in doubles also is for labels below 2^50: the same pixels, without
-// converting each view to doubles and filtering it twice (0.130 -> 0.065 s for KhanBoundaryRecall on the Illum
+// converting each view to doubles and filtering it twice (0.14 -> 0.07 s for KhanBoundaryRecall on the Illum
 // capture's 9x9 views).
 std::vector<std::uint8_t> SobelBoundary(const std::int32_t* labels, int w, int h) {
   std::vector<std::uint8_t> boundary(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);

@@ -548,8 +548,8 @@ double LabelsPerPixel(const Labels& labels, const DisparityMap& centre_disparity
         {view.u - c.u, view.v - c.v, labels.ViewData(view), &view_disparity[static_cast<std::size_t>(cam)]});
   }
   // A band of centre rows at a time, view by view: the rows a band reaches in one side view are read from memory once
-  // and then from cache. Pixel by pixel, each pixel read its rays in all 80 views (0.16 s on the Illum capture's 9x9
-  // views; 0.07 s now). Each pixel keeps the distinct labels of its 3x3 window (most windows hold one or two) and the
+  // and then from cache. Pixel by pixel, each pixel read its rays in all 80 views (0.18 s on the Illum capture's 9x9
+  // views; 0.09 s now). Each pixel keeps the distinct labels of its 3x3 window (most windows hold one or two) and the
   // foreign ones found so far; how many there are does not depend on the order the views are visited in.
   constexpr int kBandRows = 8;
   constexpr int kWindow = 9;

@@ -251,7 +251,7 @@ TEST_F(CropIllumDecode, GridFromTheCaptureAloneMatchesTheSimulatorsLattice) {
     const double rms = CentreRmsFrom(grid, truth);
     std::printf("  capture grid: %d x %d lenses, centre rms vs truth %.4f px, block rms %.4f px\n", grid.columns,
                 grid.rows, rms, grid.rms_residual);
-    // Measured 0.048 px on this crop of the textured planes scene (under 0.02 px from the white-image fit on full-size
+    // Measured 0.049 px on this crop of the textured planes scene (under 0.02 px from the white-image fit on full-size
     // captures): the scene inside the micro-images pulls each block's phase, and this crop has only ~700 blocks to
     // average it out. It read 0.097 px with the phase from the whole micro-images instead of their dark side (the
     // gaps and rims), where the scene shows more. A lattice off by one pixel or by 1e-3 in spacing scores above 0.5 px.
@@ -450,8 +450,8 @@ TEST(Decode, EstimatedWhiteImageHasTheMicroImagesShapeAtEveryOffset) {
 }
 
 // Multiplies the micro-images of the lens rows the hexagonal lattice shifts by half a pitch by 1 + gain (a / 4)^2
-// (a: px along the row from the lens centre, capped at 4), above the black level: the real F01 frames' shifted rows
-// are 1.0-1.5 % brighter at 4 px along the row relative to their centres than the unshifted rows.
+// (a: px along the row from the lens centre, capped at 4), above the black level, as the real F01 frames' are
+// (white_from_capture.cc, kRowKinds).
 void BrightenShiftedRowsRims(RawImage& raw, const LensletGrid& grid, double black, double gain) {
   for (int y = 0; y < raw.height; ++y)
     for (int x = 0; x < raw.width; ++x) {
@@ -504,11 +504,9 @@ double RimToCentreRatio(const RawImage& estimate, const RawImage& truth, const L
   return sum / std::max(count, 1);
 }
 
-// Issue 49: the real F01 frames' micro-images differ between the lattice's shifted and unshifted rows (the shifted
-// ones 1.0-1.5 % brighter at 4 px along the row, relative to their centres, on every part of the sensor), and one
-// profile for both left the outer views' rows alternating in brightness. The estimate must follow each kind of row:
-// here the shifted rows' rims are made 2 % brighter, in the capture and in the true white image alike. With one
-// profile (the estimate before) they read 1.0055 and 0.9895; now 0.998 and 0.997.
+// Issue 49: the estimated white image must follow each kind of lens row, as the real F01 frames need: here the
+// shifted rows' rims are made 2 % brighter, in the capture and in the true white image alike. With one profile for
+// both (the estimate before) the two kinds read 1.0055 and 0.9895; now 0.998 and 0.997.
 TEST(Decode, EstimatedWhiteImageFollowsEachKindOfLensRow) {
   simulate::CaptureOptions options;
   options.noise = false;

@@ -120,23 +120,31 @@ double KhanBoundaryRecallWithOpenCv(const Labels& labels, const Labels& gt) {
   return sum / counted;
 }
 
-// KhanBoundaryRecall finds the same pixels in integers: on random labels with ids that make the Sobel sums cancel
-// (1, 2, 3 around a pixel), wide ids, blocks reaching the border and views without any boundary.
-TEST(KhanBoundaryRecall, MatchesTheSobelFormulationOnRandomLabels) {
+// KhanBoundaryRecall finds the same pixels in integers: on random blocks of labels 1, 2 and 3 (times a spread) with
+// single-pixel specks among them (one pixel in 12), so that the Sobel sums of different labels around a pixel can
+// cancel; the estimate's blocks and the truth's of different sizes and offsets, blocks cut by the border, and one view
+// whose truth has no boundary at all.
+TEST(KhanBoundaryRecall, MatchesTheSobelFormulationOnRandomBlocks) {
   std::mt19937 random(29);
-  for (const int spread : {1, 2, 1000003}) {
-    std::uniform_int_distribution<int> id(0, 3), block(1, 4);
+  std::uniform_int_distribution<int> id(1, 3), size(2, 5), offset(0, 4), speck(0, 11);
+  for (const int spread : {1, 7, 1000003}) {
     Labels labels(LightFieldShape{3, 3, 23, 17, 1}), gt(labels.shape());
     for (Labels* target : {&labels, &gt})
       for (int cam = 0; cam < 9; ++cam) {
         const ViewIndex view = ViewFromCameraNumber(cam, 3);
-        const int size = block(random);
+        const int block = size(random), shift_x = offset(random), shift_y = offset(random);
+        std::vector<int> ids(16 * 16);  // one per block: at most (22 + 4) / 2 + 1 blocks along an axis
+        for (int& value : ids) value = id(random) * spread;
         for (int y = 0; y < 17; ++y)
-          for (int x = 0; x < 23; ++x)
-            target->at(view, y, x) = (cam == 4 && target == &gt) ? 7 : id(random) * spread * (x / size + y / size);
+          for (int x = 0; x < 23; ++x) {
+            const auto in_block = static_cast<std::size_t>((x + shift_x) / block * 16 + (y + shift_y) / block);
+            target->at(view, y, x) = speck(random) == 0 ? id(random) * spread : ids[in_block];
+          }
+        if (cam == 4 && target == &gt) gt.View(view).setTo(5);
       }
     const double recall = KhanBoundaryRecall(labels, gt);
-    EXPECT_GT(recall, 0.0);
+    EXPECT_GT(recall, 0.3);
+    EXPECT_LT(recall, 1.0);
     EXPECT_EQ(recall, KhanBoundaryRecallWithOpenCv(labels, gt)) << "spread " << spread;
   }
 }

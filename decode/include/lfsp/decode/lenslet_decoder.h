@@ -119,7 +119,7 @@ struct CaptureWhiteReport {
   int lenses_used = 0;  // unclipped, fully on the sensor, every Bayer phase lit
   int tiles = 0;        // per axis
   // The profile of the lattice's shifted lens rows over the unshifted rows' at 0.4 spacings along the row from the
-  // lens centre: 1 on the simulator, 1.01-1.02 on the real F01 frames (each kind of row gets its own profile).
+  // lens centre: 1 on the simulator, 1.011-1.013 on the real F01 frames (each kind of row gets its own profile).
   double shifted_rows_rim_ratio = 1.0;
 };
 RawImage EstimateWhiteImageFromCapture(const RawImage& capture, const LytroMetadata& metadata, const LensletGrid& grid,
