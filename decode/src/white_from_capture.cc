@@ -273,10 +273,14 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator,
   // micro-image is lit (1 elsewhere).
   double peak = 0.0;
   cv::minMaxLoc(whole_coarse, nullptr, &peak);
+  // A kind with few of the lenses (a capture a few rows high, whose other rows fall off the sensor) keeps the whole
+  // profile, as a sparse tile does.
+  const double whole_total = cv::sum(whole_weight)[0];
   std::array<cv::Mat, kRowKinds> kind_ratio;
   for (std::size_t kind = 0; kind < kRowKinds; ++kind) {
     const cv::Mat coarse = SmoothedProfile(kind_sums[kind], kind_weights[kind], kTileSmoothPixels);
     kind_ratio[kind] = cv::Mat::ones(bins, bins, CV_64F);
+    if (cv::sum(kind_weights[kind])[0] < 0.25 * whole_total / kRowKinds) continue;
     for (int y = 0; y < bins; ++y)
       for (int x = 0; x < bins; ++x)
         if (whole_coarse.at<double>(y, x) > kLitFraction * peak)

@@ -527,6 +527,48 @@ TEST(Decode, EstimatedWhiteImageFollowsEachKindOfLensRow) {
   }
 }
 
+// A capture only a few lens rows high, where one kind of row has no micro-image wholly on the sensor: that kind keeps
+// the whole profile (its own would be empty, and its pixels' white image black), so every lit pixel of the strip has a
+// lit white image.
+TEST(Decode, EstimatedWhiteImageOfAStripLightsBothKindsOfRow) {
+  simulate::CaptureOptions options;
+  options.noise = false;
+  const Shot shot = Simulate("crop-f01", options, false);
+  LensletGrid grid = FitGrid(shot);
+  const RawImage full = ToRawImage(shot.capture);
+  // Rows of the sensor from one lens row's centre, 2.2 lens rows high: the middle row's micro-images are whole, its
+  // neighbours' are cut by the strip's edges.
+  double cx = 0.0, cy = 0.0;
+  grid.Centre(grid.columns / 2, grid.rows / 2, cx, cy);
+  const int top = static_cast<int>(std::lround(cy - 1.1 * grid.spacing_y)),
+            height = static_cast<int>(2.2 * grid.spacing_y);
+  RawImage strip;
+  strip.width = full.width;
+  strip.height = height;
+  strip.pixels.assign(full.pixels.begin() + static_cast<std::ptrdiff_t>(top) * full.width,
+                      full.pixels.begin() + static_cast<std::ptrdiff_t>(top + height) * full.width);
+  grid.origin_y -= top;
+  grid.sensor_height = height;
+  CaptureWhiteReport report;
+  const RawImage white = EstimateWhiteImageFromCapture(strip, shot.capture_metadata, grid, &report);
+  EXPECT_GT(report.lenses_used, 50);
+  EXPECT_DOUBLE_EQ(report.shifted_rows_rim_ratio, 1.0);  // one kind only: no ratio
+  // Every pixel within 2 px of a lens centre, of either kind, is lit in the estimate.
+  long dark = 0, counted = 0;
+  for (int y = 0; y < strip.height; ++y)
+    for (int x = 0; x < strip.width; ++x) {
+      int i = 0, j = 0;
+      grid.Nearest(x, y, i, j);
+      double along = 0.0, across = 0.0;
+      grid.LocalOffset(x, y, i, j, along, across);
+      if (along * along + across * across > 4.0) continue;
+      ++counted;
+      dark += white.pixels[static_cast<std::size_t>(y) * strip.width + x] < shot.camera.black + 100;
+    }
+  EXPECT_GT(counted, 1000);
+  EXPECT_EQ(dark, 0);
+}
+
 TEST_F(CropIllumDecode, NoMoreRowShiftEnergyThanTheTruth) {
   DecodeOptions options;
   if (std::getenv("DEHEX")) options.dehex = std::atof(std::getenv("DEHEX"));
