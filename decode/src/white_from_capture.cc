@@ -208,18 +208,18 @@ TileCorrection NoCorrection() { return TileCorrection(1.0, 0.0, 0.0, 0.0); }
 
 TileCorrection CorrectionBasis(double ox, double oy) { return TileCorrection(1.0, ox * ox, oy * oy, ox * oy); }
 
-TileCorrection FitTileCorrection(const cv::Mat& tile_sum, const cv::Mat& tile_weight, const cv::Mat& whole_coarse) {
+// `lit_level`: the level of `whole_coarse` above which the micro-image counts as lit (kLitFraction of its peak).
+TileCorrection FitTileCorrection(const cv::Mat& tile_sum, const cv::Mat& tile_weight, const cv::Mat& whole_coarse,
+                                 double lit_level) {
   const cv::Mat tile = SmoothedProfile(tile_sum, tile_weight, kTileSmoothPixels);
   const cv::Mat weight = Blur(tile_weight, kTileSmoothPixels);
-  double peak = 0.0;
-  cv::minMaxLoc(whole_coarse, nullptr, &peak);
   const double centre = 0.5 * (tile.cols - 1);
   cv::Matx44d normal = cv::Matx44d::zeros();
   TileCorrection right = TileCorrection::all(0.0);
   for (int y = 0; y < tile.rows; ++y)
     for (int x = 0; x < tile.cols; ++x) {
       const double whole = whole_coarse.at<double>(y, x), w = weight.at<double>(y, x);
-      if (whole < kLitFraction * peak || !(w > 0.0)) continue;
+      if (whole < lit_level || !(w > 0.0)) continue;
       const TileCorrection basis = CorrectionBasis((x - centre) * kBinPixels, (y - centre) * kBinPixels);
       right += w * (tile.at<double>(y, x) / whole) * basis;
       normal += w * basis * basis.t();
@@ -273,17 +273,18 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator,
   // micro-image is lit (1 elsewhere).
   double peak = 0.0;
   cv::minMaxLoc(whole_coarse, nullptr, &peak);
+  const double lit_level = kLitFraction * peak;
   // A kind with few of the lenses (a capture a few rows high, whose other rows fall off the sensor) keeps the whole
   // profile, as a sparse tile does.
   const double whole_total = cv::sum(whole_weight)[0];
   std::array<cv::Mat, kRowKinds> kind_ratio;
   for (std::size_t kind = 0; kind < kRowKinds; ++kind) {
-    const cv::Mat coarse = SmoothedProfile(kind_sums[kind], kind_weights[kind], kTileSmoothPixels);
     kind_ratio[kind] = cv::Mat::ones(bins, bins, CV_64F);
     if (cv::sum(kind_weights[kind])[0] < 0.25 * whole_total / kRowKinds) continue;
+    const cv::Mat coarse = SmoothedProfile(kind_sums[kind], kind_weights[kind], kTileSmoothPixels);
     for (int y = 0; y < bins; ++y)
       for (int x = 0; x < bins; ++x)
-        if (whole_coarse.at<double>(y, x) > kLitFraction * peak)
+        if (whole_coarse.at<double>(y, x) > lit_level)
           kind_ratio[kind].at<double>(y, x) = coarse.at<double>(y, x) / whole_coarse.at<double>(y, x);
   }
   const double centre = 0.5 * (bins - 1);
@@ -291,7 +292,7 @@ std::vector<cv::Mat> TileProfiles(const ProfileAccumulator& accumulator,
   for (int t = 0; t < tiles * tiles; ++t) {
     const auto k = static_cast<std::size_t>(t);
     const bool sparse = cv::sum(weights[k])[0] < 0.25 * median_weight;
-    const TileCorrection c = sparse ? NoCorrection() : FitTileCorrection(sums[k], weights[k], whole_coarse);
+    const TileCorrection c = sparse ? NoCorrection() : FitTileCorrection(sums[k], weights[k], whole_coarse, lit_level);
     for (const cv::Mat& ratio : kind_ratio) {
       cv::Mat profile(bins, bins, CV_32F);
       for (int y = 0; y < bins; ++y)
