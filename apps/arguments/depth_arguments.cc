@@ -77,11 +77,13 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->add_option("--sampler", arguments.sampler,
                    "How views are resampled at sub-pixel shifts: bilinear (sharpest) | noise-matched (a cubic kernel "
                    "that keeps the same noise at every shift, so noise cannot pull disparities off whole-pixel "
-                   "shifts; blurs by the cubic B-spline) | automatic: noise-matched on lenslet decodes and on views "
-                   "whose median noise estimate reads above 0.003 (noise, or a fine sharp texture, whose bilinear "
-                   "resampling is biased too), bilinear on the others")
+                   "shifts; blurs by the cubic B-spline) | cubic (Keys' cubic convolution: sharp, and blurs no more "
+                   "at half-pixel shifts than at whole ones to second order; antinous BadPix 0.07 5.9 -> 4.9 %, but "
+                   "worse on sharp-edged renderings such as the simulator's occluders) | automatic: noise-matched on "
+                   "lenslet decodes and on views whose median noise estimate reads above 0.003 (noise, or a fine "
+                   "sharp texture, whose bilinear resampling is biased too), bilinear on the others")
       ->capture_default_str()
-      ->check(CLI::IsMember({"automatic", "bilinear", "noise-matched"}));
+      ->check(CLI::IsMember({"automatic", "bilinear", "noise-matched", "cubic"}));
   command->add_option("--colour-weight", method.cost.colour_weight, "Weight of the colour term of the cost")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

@@ -42,7 +42,8 @@ struct TermWeights {
 };
 
 // How one view is resampled at one label's shift (sx, sy): the whole-pixel part and the weights of the taps on each
-// axis. Bilinear uses taps 0 and 1 (weights 1 - a, a); noise-matched taps -1 .. 2 (NoiseMatchedWeights).
+// axis. Bilinear uses taps 0 and 1 (weights 1 - a, a); noise-matched and cubic taps -1 .. 2 (NoiseMatchedWeights,
+// CubicConvolutionWeights).
 struct Taps {
   int ix;
   int iy;
@@ -50,15 +51,18 @@ struct Taps {
   std::array<float, 4> wy;
 };
 
-Taps TapsFor(bool noise_matched, float sx, float sy) {
+Taps TapsFor(Sampler sampler, float sx, float sy) {
   const float fx = std::floor(sx);
   const float fy = std::floor(sy);
   const float ax = sx - fx;
   const float ay = sy - fy;
   Taps taps{static_cast<int>(fx), static_cast<int>(fy), {1.0f - ax, ax, 0.0f, 0.0f}, {1.0f - ay, ay, 0.0f, 0.0f}};
-  if (noise_matched) {
+  if (sampler == Sampler::kNoiseMatched) {
     taps.wx = NoiseMatchedWeights(ax);
     taps.wy = NoiseMatchedWeights(ay);
+  } else if (sampler == Sampler::kCubic) {
+    taps.wx = CubicConvolutionWeights(ax);
+    taps.wy = CubicConvolutionWeights(ay);
   }
   return taps;
 }
@@ -124,12 +128,14 @@ __attribute__((target_clones("avx2", "default"))) void RowCostsBilinear(const fl
   for (int x = x_end; x < width; ++x) clamped(x);
 }
 
-// Noise-matched (noise_matched_kernel.h): four taps per axis, separably: the four rows are mixed into `mixed`
-// (kC * width floats of scratch), then four columns of that.
+// Noise-matched or cubic (noise_matched_kernel.h): four taps per axis, separably: the four rows are mixed into
+// `mixed` (kC * width floats of scratch), then four columns of that.
 template <int kC>
-__attribute__((target_clones("avx2", "default"))) void RowCostsNoiseMatched(
-    const float* view, int width, int height, int y, const Taps& taps, const float* centre_row, const TermWeights terms,
-    float* __restrict costs, float* __restrict mixed) {
+__attribute__((target_clones("avx2", "default"))) void RowCostsFourTaps(const float* view, int width, int height, int y,
+                                                                        const Taps& taps, const float* centre_row,
+                                                                        const TermWeights terms,
+                                                                        float* __restrict costs,
+                                                                        float* __restrict mixed) {
   const std::array<float, 4>& wx = taps.wx;
   const std::array<float, 4>& wy = taps.wy;
   const int ix = taps.ix;
@@ -196,11 +202,11 @@ struct RowAccumulators {
 
 // One view's cost at one label for one row, added to the tile's accumulators.
 template <int kC>
-void AddViewRow(bool noise_matched, const float* view, int width, int height, int y, const Taps& taps,
+void AddViewRow(bool four_taps, const float* view, int width, int height, int y, const Taps& taps,
                 const float* centre_row, const TermWeights& terms, float* mixed, float* costs,
                 const RowAccumulators& into) {
-  if (noise_matched) {
-    RowCostsNoiseMatched<kC>(view, width, height, y, taps, centre_row, terms, costs, mixed);
+  if (four_taps) {
+    RowCostsFourTaps<kC>(view, width, height, y, taps, centre_row, terms, costs, mixed);
   } else {
     RowCostsBilinear<kC>(view, width, height, y, taps, centre_row, terms, costs);
   }
@@ -350,6 +356,8 @@ std::string SamplerName(Sampler sampler) {
       return "bilinear";
     case Sampler::kNoiseMatched:
       return "noise-matched";
+    case Sampler::kCubic:
+      return "cubic";
     case Sampler::kAutomatic:
       break;
   }
@@ -357,9 +365,9 @@ std::string SamplerName(Sampler sampler) {
 }
 
 Sampler SamplerFromString(const std::string& name) {
-  for (const Sampler sampler : {Sampler::kAutomatic, Sampler::kBilinear, Sampler::kNoiseMatched})
+  for (const Sampler sampler : {Sampler::kAutomatic, Sampler::kBilinear, Sampler::kNoiseMatched, Sampler::kCubic})
     if (name == SamplerName(sampler)) return sampler;
-  throw Error("sampler '" + name + "': unknown (expected automatic, bilinear or noise-matched)");
+  throw Error("sampler '" + name + "': unknown (expected automatic, bilinear, noise-matched or cubic)");
 }
 
 std::vector<float> LabelDisparities(float min, float max, int count) {
@@ -444,6 +452,7 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
   }
   const FeatureImages features = MakeFeatureImages(light_field, options, with_detail);
   const bool noise_matched = options.sampler == Sampler::kNoiseMatched;
+  const bool four_taps = noise_matched || options.sampler == Sampler::kCubic;
   const std::vector<float> blurred_centre = noise_matched ? NoiseMatchedCentre(features, shape) : std::vector<float>();
   const float* centre = noise_matched ? blurred_centre.data() : features.View(shape, shape.Centre());
   const auto add_view_row =
@@ -478,7 +487,7 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
     std::vector<float> alongs(along_edge ? totals.size() : 0);
     std::vector<float> in_along(along_edge ? static_cast<std::size_t>(kSectors) * tile_size : 0);
     std::vector<float> costs(static_cast<std::size_t>(width));
-    std::vector<float> mixed(noise_matched ? row_samples : 0);
+    std::vector<float> mixed(four_taps ? row_samples : 0);
     auto row_of = [&](std::vector<float>& buffer, int index, int row) {
       return buffer.data() + static_cast<std::size_t>(index) * tile_size +
              static_cast<std::size_t>(row) * static_cast<std::size_t>(width);
@@ -508,11 +517,11 @@ CostVolume BuildCostVolume(const LightField& light_field, const std::vector<floa
         for (int l = 0; l < labels; ++l) {
           // docs/DESIGN.md: the centre pixel (x, y) at disparity d is seen in view (u, v) at (x - du*d, y - dv*d).
           const float d = disparities[static_cast<std::size_t>(l)];
-          const Taps taps = TapsFor(noise_matched, -plan.du * d, -plan.dv * d);
+          const Taps taps = TapsFor(options.sampler, -plan.du * d, -plan.dv * d);
           for (int y = y_begin; y < y_end; ++y) {
             const int row = y - y_begin;
             const float* centre_row = centre + static_cast<std::size_t>(y) * row_samples;
-            add_view_row(noise_matched, plan.features, width, height, y, taps, centre_row, terms, mixed.data(),
+            add_view_row(four_taps, plan.features, width, height, y, taps, centre_row, terms, mixed.data(),
                          costs.data(),
                          {row_of(totals, l, row), occlusion ? row_of(in_half_a, plan.sector, row) : nullptr,
                           occlusion ? row_of(halves, l, row) : nullptr,

@@ -25,4 +25,10 @@ std::array<float, 4> NoiseMatchedWeights(float a) {
   return weights;
 }
 
+std::array<float, 4> CubicConvolutionWeights(float a) {
+  const float s = a, r = 1.0f - a;
+  return {-0.5f * s * r * r, 1.0f - 2.5f * s * s + 1.5f * s * s * s, 1.0f - 2.5f * r * r + 1.5f * r * r * r,
+          -0.5f * r * s * s};
+}
+
 }  // namespace lfsp::depth

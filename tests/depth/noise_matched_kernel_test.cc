@@ -59,17 +59,18 @@ float Sample(const LightField& light_field, ViewIndex view, float x, float y, in
            (1 - ax) * ay * Clamped(light_field, view, ix, iy + 1, c) +
            ax * ay * Clamped(light_field, view, ix + 1, iy + 1, c);
   }
-  const std::array<float, 4> wx = NoiseMatchedWeights(ax), wy = NoiseMatchedWeights(ay);
+  const auto weights = sampler == Sampler::kCubic ? CubicConvolutionWeights : NoiseMatchedWeights;
+  const std::array<float, 4> wx = weights(ax), wy = weights(ay);
   float sum = 0.0f;
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) sum += wx[i] * wy[j] * Clamped(light_field, view, ix - 1 + i, iy - 1 + j, c);
   return sum;
 }
 
-// The centre view as the sampler compares it: as it is (bilinear), or blurred by kNoiseMatchedCentreKernel.
+// The centre view as the sampler compares it: as it is (bilinear, cubic), or blurred by kNoiseMatchedCentreKernel.
 float Centre(const LightField& light_field, int x, int y, int c, Sampler sampler) {
   const ViewIndex centre = light_field.shape().Centre();
-  if (sampler == Sampler::kBilinear) return light_field.at(centre, y, x, c);
+  if (sampler != Sampler::kNoiseMatched) return light_field.at(centre, y, x, c);
   float sum = 0.0f;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
@@ -78,8 +79,30 @@ float Centre(const LightField& light_field, int x, int y, int c, Sampler sampler
   return sum;
 }
 
-// Both samplers against the tap-by-tap version on a light field smaller than their footprint, at shifts many times
+// All three samplers against the tap-by-tap version on a light field smaller than their footprint, at shifts many times
 // its size in both directions and at fractions on either side of whole pixels: every border path is taken.
+// Keys' cubic convolution reproduces quadratics: sum 1, centroid a, second moment about a 0, at every a; and it
+// interpolates (1 at the tap it sits on at a = 0).
+TEST(CubicConvolution, ReproducesQuadraticsAtEveryPosition) {
+  for (int i = 0; i <= 100; ++i) {
+    const double a = i / 100.0;
+    const std::array<float, 4> w = CubicConvolutionWeights(static_cast<float>(a));
+    double sum = 0.0, first = 0.0, second = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const double offset = (k - 1) - a;
+      sum += w[k];
+      first += w[k] * offset;
+      second += w[k] * offset * offset;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-6) << a;
+    EXPECT_NEAR(first, 0.0, 1e-6) << a;
+    EXPECT_NEAR(second, 0.0, 1e-6) << a;
+  }
+  const std::array<float, 4> at_tap = CubicConvolutionWeights(0.0f);
+  EXPECT_FLOAT_EQ(at_tap[1], 1.0f);
+  EXPECT_FLOAT_EQ(at_tap[0] + at_tap[2] + at_tap[3], 0.0f);
+}
+
 TEST(NoiseMatchedKernel, CostVolumeSamplesLikeTheTapByTapSampler) {
   LightField light_field(LightFieldShape{3, 3, 5, 3, 3});
   std::mt19937 random(4);
@@ -92,7 +115,7 @@ TEST(NoiseMatchedKernel, CostVolumeSamplesLikeTheTapByTapSampler) {
   options.channel_weights = {1.0f, 1.0f, 1.0f};
   options.excluded_ring = 0;
   const LightFieldShape& shape = light_field.shape();
-  for (const Sampler sampler : {Sampler::kBilinear, Sampler::kNoiseMatched}) {
+  for (const Sampler sampler : {Sampler::kBilinear, Sampler::kNoiseMatched, Sampler::kCubic}) {
     options.sampler = sampler;
     const CostVolume cost = BuildCostVolume(light_field, disparities, options, nullptr);
     for (int y = 0; y < shape.height; ++y)

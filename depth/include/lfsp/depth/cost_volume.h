@@ -50,9 +50,10 @@ enum class Sampler {
   kAutomatic,     // EstimateDepth: noise-matched on noisy views and lenslet decodes, else bilinear
   kBilinear,      // sharpest; on noisy views its noise varies with the shift and biases the cost
   kNoiseMatched,  // cubic, the same noise at every shift; blurs by the cubic B-spline (the centre view too)
+  kCubic,         // Keys' cubic convolution (a = -1/2): sharp, and its blur's second moment is 0 at every shift
 };
 
-// "automatic", "bilinear", "noise-matched"; SamplerFromString throws lfsp::Error on any other name.
+// "automatic", "bilinear", "noise-matched", "cubic"; SamplerFromString throws lfsp::Error on any other name.
 std::string SamplerName(Sampler sampler);
 Sampler SamplerFromString(const std::string& name);
 

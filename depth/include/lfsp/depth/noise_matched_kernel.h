@@ -30,4 +30,8 @@ std::array<float, 4> NoiseMatchedWeights(float a);
 // second moment 1/3 like every resampled view, so a textured surface looks the same in both up to the third moment.
 constexpr std::array<float, 3> kNoiseMatchedCentreKernel = {1.0f / 6.0f, 4.0f / 6.0f, 1.0f / 6.0f};
 
+// Keys' cubic convolution (a = -1/2) at the same four taps: exact on quadratics, so its blur's second moment is 0
+// at every a.
+std::array<float, 4> CubicConvolutionWeights(float a);
+
 }  // namespace lfsp::depth
