@@ -24,7 +24,8 @@ bool AdmitsPartialPatches(const DepthOptions& options) {
 // How many steps EstimateDepth times (as many laps as it makes).
 std::size_t StepsOf(const DepthOptions& options) {
   return 4 + (AdmitsPartialPatches(options) ? 1 : 0) + (options.aggregation_radius > 0 ? 1 : 0) +
-         (options.regularise ? 2 : 0) + (options.regularise && options.plane_fit ? 1 : 0);
+         (options.regularise ? 2 : 0) + (options.regularise && options.plane_fit ? 1 : 0) +
+         (options.regularise && options.textureless_fill.smoothness > 0.0f ? 1 : 0);
 }
 
 }  // namespace
@@ -159,6 +160,10 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
   if (options.regularise) {
     WeightedMedianRefine(estimate.disparity, centre, options.median);
     lap("weighted_median");
+    if (options.textureless_fill.smoothness > 0.0f) {
+      FillTexturelessDisparity(estimate.disparity, centre, options.textureless_fill);
+      lap("textureless_fill");
+    }
   }
   LowerConfidenceNearDepthEdges(estimate.confidence, estimate.disparity);
   if (options.regularise) RemoveConfidenceStreaks(estimate.confidence);

@@ -65,6 +65,9 @@ nlohmann::json ToJson(const DepthOptions& options) {
                     {"sigma", options.median.sigma},
                     {"wide_radius", options.median.wide_radius},
                     {"wide_threshold", options.median.wide_threshold}};
+  json["textureless_fill"] = {{"smoothness", options.textureless_fill.smoothness},
+                              {"texture_scale", options.textureless_fill.texture_scale},
+                              {"jump", options.textureless_fill.jump}};
   json["presmooth_sigma"] = options.presmooth_sigma;
   json["excluded_ring"] = options.cost.excluded_ring;
   json["detail_weight"] = options.cost.detail_weight;

@@ -1,4 +1,5 @@
-// Sub-label refinement, the weighted median and the slanted-plane fill on inputs with known answers.
+// Sub-label refinement, the weighted median, the slanted-plane fill and the textureless fill on inputs with known
+// answers.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include "lfsp/depth/cost_volume.h"
 #include "lfsp/depth/plane_fit.h"
 #include "lfsp/depth/refinement.h"
+#include "lfsp/depth/textureless_fill.h"
 
 namespace lfsp::depth {
 namespace {
@@ -173,6 +175,77 @@ TEST(PlaneFit, UnsupportedPixelsTakeTheirSuperpixelsPlane) {
       EXPECT_NEAR(disparity.at(y, x), 0.01f * static_cast<float>(x) - 0.02f * static_cast<float>(y), 1e-3);
     }
   }
+}
+
+// A checkerboard of flat tiles, 24 px each, two colours 0.3 apart: only the pixels within two of a tile edge have
+// texture (the 3 x 3 mean of the squared gradient reaches that far).
+cv::Mat FlatTiles(int width, int height) {
+  cv::Mat guide(height, width, CV_32FC3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float level = ((x / 24 + y / 24) % 2 == 0) ? 0.3f : 0.6f;
+      guide.at<cv::Vec3f>(y, x) = cv::Vec3f(level, level, level);
+    }
+  return guide;
+}
+
+// A floor sloping down the picture: the tile rims read it right, the flat interiors of the tiles away from the
+// picture's border as a staircase of 0.1 px treads (what the semi-global pass leaves there). The fill puts the
+// interiors back on the plane. (Along the picture's border a tile has no rim, and the fill levels it out there.)
+TEST(TexturelessFill, FlatTilesOfASlopedFloorTakeThePlaneTheirRimsRead) {
+  const int width = 120, height = 96;
+  const cv::Mat guide = FlatTiles(width, height);
+  const auto truth = [](int x, int y) { return 0.004f * static_cast<float>(x) + 0.01f * static_cast<float>(y) - 0.5f; };
+  const auto on_rim = [](int t) { return t % 24 <= 1 || t % 24 >= 22; };
+  const auto inner_tile = [&](int x, int y) { return x >= 24 && x < width - 24 && y >= 24 && y < height - 24; };
+  DisparityMap disparity(width, height);
+  float staircase_error = 0.0f;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const bool tread = inner_tile(x, y) && !on_rim(x) && !on_rim(y);
+      disparity.at(y, x) = tread ? std::round(truth(x, y) * 10.0f) / 10.0f : truth(x, y);
+      staircase_error = std::max(staircase_error, std::abs(disparity.at(y, x) - truth(x, y)));
+    }
+  ASSERT_GT(staircase_error, 0.045f);
+  FillTexturelessDisparity(disparity, guide);
+  float inner_error = 0.0f;
+  for (int y = 24; y < height - 24; ++y)
+    for (int x = 24; x < width - 24; ++x)
+      inner_error = std::max(inner_error, std::abs(disparity.at(y, x) - truth(x, y)));
+  EXPECT_LT(inner_error, 0.003f);
+}
+
+// Two objects of one colour, one in front of the other: nothing tells them apart but the disparity, whose step
+// must stay where it is.
+TEST(TexturelessFill, KeepsADepthStepThatHasNoColourEdge) {
+  const int width = 64, height = 48;
+  const cv::Mat guide(height, width, CV_32FC3, cv::Scalar(0.5f, 0.4f, 0.3f));
+  DisparityMap disparity(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) disparity.at(y, x) = x < 30 ? 1.2f : 0.1f;
+  FillTexturelessDisparity(disparity, guide);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) ASSERT_NEAR(disparity.at(y, x), x < 30 ? 1.2f : 0.1f, 1e-4) << x << ", " << y;
+}
+
+// Where every pixel has texture, each keeps its own disparity: the smoothness weighs a thousandth of it.
+TEST(TexturelessFill, TexturedPixelsKeepTheirDisparity) {
+  const int width = 64, height = 48;
+  cv::Mat guide(height, width, CV_32FC3);
+  cv::RNG rng(7);
+  rng.fill(guide, cv::RNG::UNIFORM, 0.0, 1.0);
+  DisparityMap disparity(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) disparity.at(y, x) = static_cast<float>(rng.uniform(-0.1, 0.1));
+  const DisparityMap given = disparity;
+  FillTexturelessDisparity(disparity, guide);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) ASSERT_NEAR(disparity.at(y, x), given.at(y, x), 2e-3) << x << ", " << y;
+  // Off, nothing moves at all.
+  DisparityMap untouched = given;
+  FillTexturelessDisparity(untouched, FlatTiles(width, height), TexturelessFillOptions{.smoothness = 0.0f});
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) ASSERT_EQ(untouched.at(y, x), given.at(y, x));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "lfsp/depth/plane_fit.h"
 #include "lfsp/depth/refinement.h"
 #include "lfsp/depth/sgm.h"
+#include "lfsp/depth/textureless_fill.h"
 
 namespace lfsp::depth {
 
@@ -39,6 +40,8 @@ struct DepthOptions {
   // noisy views, none on clean ones), 0 = off.
   float presmooth_sigma = -1.0f;
   MedianOptions median;  // the weighted-median refinement (refinement.h)
+  // After the median: textureless pixels interpolated from the textured ones around them (textureless_fill.h).
+  TexturelessFillOptions textureless_fill;
 };
 
 struct DepthResult {
@@ -67,7 +70,8 @@ DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthO
                                      std::string* source = nullptr);
 
 // Occlusion-aware centre-view disparity: cost volume (with the half-patch choice near edges), semi-global
-// aggregation, sub-label refinement, weighted median. Throws lfsp::Error on unusable input.
+// aggregation, sub-label refinement, weighted median,
+// textureless fill. Throws lfsp::Error on unusable input.
 DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options);
 
 }  // namespace lfsp::depth
