@@ -3,13 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 #include "lfsp/core/error.h"
+#include "lfsp/core/ordered_reduction.h"
 
 namespace lfsp::depth {
 
 namespace {
+
+// Grids smaller than this are solved on one thread: a coarse level's work is too little to pay for waking a second
+// one several times per step.
+constexpr std::size_t kParallelNodes = 1 << 16;
 
 // A 4-neighbour least-squares problem on a grid: minimise sum_i data_i (x_i - target_i)^2 + sum over neighbours of
 // right_i (x_i - x_right)^2 + down_i (x_i - x_below)^2. `weighted_target` holds data_i * target_i.
@@ -33,7 +39,7 @@ struct GridProblem {
 // out = A v, A being the problem's normal matrix (symmetric positive definite when some data_i > 0 in every
 // connected part).
 void Apply(const GridProblem& p, const std::vector<double>& v, std::vector<double>& out) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (p.Size() >= kParallelNodes)
   for (int y = 0; y < p.height; ++y) {
     for (int x = 0; x < p.width; ++x) {
       const std::size_t i = p.Index(x, y);
@@ -47,19 +53,19 @@ void Apply(const GridProblem& p, const std::vector<double>& v, std::vector<doubl
   }
 }
 
-// The sum of a[i] b[i], by rows on both cores and then the rows in order, so that it does not depend on the number
-// of threads to the last bit.
+// The sum of a[i] b[i], in a fixed order of rows (OrderedParallelSum), so that it does not depend on the threads.
 double Dot(const GridProblem& p, const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> rows(static_cast<std::size_t>(p.height));
-#pragma omp parallel for schedule(static)
-  for (int y = 0; y < p.height; ++y) {
+  const auto add_row = [&](int y, double& sum) {
+    const std::size_t begin = p.Index(0, y), end = begin + static_cast<std::size_t>(p.width);
+    for (std::size_t i = begin; i < end; ++i) sum += a[i] * b[i];
+  };
+  if (p.Size() < kParallelNodes) {
     double sum = 0.0;
-    for (std::size_t i = p.Index(0, y); i < p.Index(0, y) + static_cast<std::size_t>(p.width); ++i) sum += a[i] * b[i];
-    rows[static_cast<std::size_t>(y)] = sum;
+    for (int y = 0; y < p.height; ++y) add_row(y, sum);
+    return sum;
   }
-  double sum = 0.0;
-  for (const double row : rows) sum += row;
-  return sum;
+  return OrderedParallelSum(
+      p.height, [] { return 0.0; }, add_row, [](double& into, double from) { into += from; });
 }
 
 // Conjugate gradients with the diagonal as preconditioner, from `solution`, until no update moves a value by more
@@ -92,7 +98,7 @@ void SolveConjugateGradients(const GridProblem& p, std::vector<double>& solution
     if (!(curvature > 0.0)) break;
     const double alpha = rho / curvature;
     double largest_step = 0.0;
-#pragma omp parallel for reduction(max : largest_step) schedule(static)
+#pragma omp parallel for reduction(max : largest_step) schedule(static) if (n >= kParallelNodes)
     for (std::size_t i = 0; i < n; ++i) {
       solution[i] += alpha * direction[i];
       residual[i] -= alpha * product[i];
@@ -103,7 +109,7 @@ void SolveConjugateGradients(const GridProblem& p, std::vector<double>& solution
     const double next_rho = Dot(p, residual, preconditioned);
     const double beta = next_rho / rho;
     rho = next_rho;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelNodes)
     for (std::size_t i = 0; i < n; ++i) direction[i] = preconditioned[i] + beta * direction[i];
   }
 }
@@ -148,19 +154,25 @@ GridProblem Coarsen(const GridProblem& fine) {
   return coarse;
 }
 
-// Coarse to fine: the coarsest grid solved outright, every finer one started from the coarser solution (each block's
-// value for its pixels) and refined, so the long-range part of the solution does not have to travel pixel by pixel.
-// Only the nodes whose data weight is low (below half of the `pixels_per_node` pixels' full weight) take the block's
-// value: the others are held by their own estimate already.
+// Coarse to fine: the coarsest grid (at most 16 nodes on a side) solved until no step moves a value by more than
+// `tolerance`, every finer one started from the coarser solution (each block's value for its pixels) and refined by
+// at most 60 steps, so that the long-range part of the solution does not have to travel pixel by pixel.
+// Only the nodes whose data weight is low (below half of what `pixels_per_node` fully textured pixels weigh; nodes at
+// an odd edge stand for fewer) take the block's value: the others are held by their own estimate already.
 void SolveMultilevel(const GridProblem& p, std::vector<double>& solution, double tolerance,
                      double pixels_per_node = 1.0) {
   constexpr int kCoarsestSide = 16;
   constexpr int kIterationsPerLevel = 60;
   if (p.width > kCoarsestSide && p.height > kCoarsestSide) {
     const GridProblem coarse = Coarsen(p);
-    std::vector<double> coarse_solution(coarse.Size(), 0.0);
+    // The coarse start: each block's mean (a block at an odd edge holds one or two nodes).
+    std::vector<double> coarse_solution(coarse.Size(), 0.0), members(coarse.Size(), 0.0);
     for (int y = 0; y < p.height; ++y)
-      for (int x = 0; x < p.width; ++x) coarse_solution[coarse.Index(x / 2, y / 2)] += 0.25 * solution[p.Index(x, y)];
+      for (int x = 0; x < p.width; ++x) {
+        coarse_solution[coarse.Index(x / 2, y / 2)] += solution[p.Index(x, y)];
+        members[coarse.Index(x / 2, y / 2)] += 1.0;
+      }
+    for (std::size_t c = 0; c < coarse.Size(); ++c) coarse_solution[c] /= members[c];
     SolveMultilevel(coarse, coarse_solution, tolerance, 4.0 * pixels_per_node);
     for (int y = 0; y < p.height; ++y)
       for (int x = 0; x < p.width; ++x) {
@@ -175,34 +187,24 @@ void SolveMultilevel(const GridProblem& p, std::vector<double>& solution, double
 }
 
 // How much of each pixel's own disparity the fill keeps: e / (e + scale^2), e being the squared colour gradient
-// (central differences, summed over channels) averaged over 3 x 3.
+// (central differences, summed over channels; 0 at the picture's border) averaged over 3 x 3. A pixel whose colour
+// is not finite keeps its disparity whole.
 std::vector<double> TextureWeights(const cv::Mat& guide_rgb, float texture_scale) {
-  const int width = guide_rgb.cols, height = guide_rgb.rows;
-  std::vector<double> energy(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
-  for (int y = 0; y < height; ++y) {
-    const cv::Vec3f* row = guide_rgb.ptr<cv::Vec3f>(y);
-    const cv::Vec3f* above = guide_rgb.ptr<cv::Vec3f>(std::max(0, y - 1));
-    const cv::Vec3f* below = guide_rgb.ptr<cv::Vec3f>(std::min(height - 1, y + 1));
-    for (int x = 0; x < width; ++x) {
-      // Zero at the picture's border, where a pixel has a neighbour on one side only.
-      const cv::Vec3f gx = (x > 0 && x + 1 < width) ? (row[x + 1] - row[x - 1]) * 0.5f : cv::Vec3f();
-      const cv::Vec3f gy = (y > 0 && y + 1 < height) ? (below[x] - above[x]) * 0.5f : cv::Vec3f();
-      energy[static_cast<std::size_t>(y) * width + x] = gx.dot(gx) + gy.dot(gy);
-    }
-  }
+  cv::Mat gx, gy;
+  cv::Sobel(guide_rgb, gx, CV_32F, 1, 0, 1, 0.5);  // kernel size 1: (-1, 0, 1) / 2, the border mirrored
+  cv::Sobel(guide_rgb, gy, CV_32F, 0, 1, 1, 0.5);
+  const cv::Mat squared = gx.mul(gx) + gy.mul(gy);
+  cv::Mat energy;
+  cv::transform(squared, energy, cv::Matx13f(1.0f, 1.0f, 1.0f));  // summed over channels
+  cv::blur(energy, energy, cv::Size(3, 3));
   const double scale2 = static_cast<double>(texture_scale) * texture_scale;
-  std::vector<double> weights(energy.size());
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      double sum = 0.0;
-      int count = 0;
-      for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
-        for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx, ++count)
-          sum += energy[static_cast<std::size_t>(yy) * width + xx];
-      const double e = sum / count;
-      weights[static_cast<std::size_t>(y) * width + x] = e / (e + scale2);
+  std::vector<double> weights(energy.total());
+  for (int y = 0; y < energy.rows; ++y)
+    for (int x = 0; x < energy.cols; ++x) {
+      const double e = energy.at<float>(y, x);
+      weights[static_cast<std::size_t>(y) * static_cast<std::size_t>(energy.cols) + static_cast<std::size_t>(x)] =
+          std::isfinite(e) ? e / (e + scale2) : 1.0;
     }
-  }
   return weights;
 }
 
@@ -227,23 +229,25 @@ void FillTexturelessDisparity(DisparityMap& disparity, const cv::Mat& guide_rgb,
   // Neighbours are mixed unless the disparity steps between them: a depth edge with no colour edge (two objects of
   // one colour) stays. Colour edges need no weight of their own: their pixels are textured, so they keep their
   // disparity (weighting by colour similarity changed no figure of BENCHMARKS.md's scenes).
+  // A pair with a non-finite disparity fails the test too: such a pixel is an island, solved at 0 and left as it was.
   const auto weight = [&](float a, float b) { return std::abs(a - b) <= options.jump ? options.smoothness : 0.0f; };
+  std::vector<double> solution(p.Size());
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const std::size_t i = p.Index(x, y);
+      const float d = disparity.at(y, x);
+      solution[i] = std::isfinite(d) ? d : 0.0;
       p.data[i] += kDataFloor;
-      p.weighted_target[i] = p.data[i] * disparity.at(y, x);
-      if (x + 1 < width) p.right[i] = weight(disparity.at(y, x), disparity.at(y, x + 1));
-      if (y + 1 < height) p.down[i] = weight(disparity.at(y, x), disparity.at(y + 1, x));
+      p.weighted_target[i] = p.data[i] * solution[i];
+      if (x + 1 < width) p.right[i] = weight(d, disparity.at(y, x + 1));
+      if (y + 1 < height) p.down[i] = weight(d, disparity.at(y + 1, x));
     }
   }
-  std::vector<double> solution(p.Size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) solution[p.Index(x, y)] = disparity.at(y, x);
   constexpr double kTolerance = 1e-5;  // px per view step, the largest update at which a level stops
   SolveMultilevel(p, solution, kTolerance);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) disparity.at(y, x) = static_cast<float>(solution[p.Index(x, y)]);
+    for (int x = 0; x < width; ++x)
+      if (std::isfinite(disparity.at(y, x))) disparity.at(y, x) = static_cast<float>(solution[p.Index(x, y)]);
 }
 
 }  // namespace lfsp::depth

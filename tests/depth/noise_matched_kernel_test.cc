@@ -79,8 +79,6 @@ float Centre(const LightField& light_field, int x, int y, int c, Sampler sampler
   return sum;
 }
 
-// All three samplers against the tap-by-tap version on a light field smaller than their footprint, at shifts many times
-// its size in both directions and at fractions on either side of whole pixels: every border path is taken.
 // Keys' cubic convolution reproduces quadratics: sum 1, centroid a, second moment about a 0, at every a; and it
 // interpolates (1 at the tap it sits on at a = 0).
 TEST(CubicConvolution, ReproducesQuadraticsAtEveryPosition) {
@@ -99,10 +97,15 @@ TEST(CubicConvolution, ReproducesQuadraticsAtEveryPosition) {
     EXPECT_NEAR(second, 0.0, 1e-6) << a;
   }
   const std::array<float, 4> at_tap = CubicConvolutionWeights(0.0f);
-  EXPECT_FLOAT_EQ(at_tap[1], 1.0f);
-  EXPECT_FLOAT_EQ(at_tap[0] + at_tap[2] + at_tap[3], 0.0f);
+  EXPECT_EQ(at_tap, (std::array<float, 4>{0.0f, 1.0f, 0.0f, 0.0f}));
+  // Keys' a = -1/2 at a quarter pixel (Lagrange's cubic, exact on quadratics too, has -0.0547 here).
+  const std::array<float, 4> quarter = CubicConvolutionWeights(0.25f);
+  EXPECT_NEAR(quarter[0], -0.0703125f, 1e-6f);
+  EXPECT_NEAR(quarter[1], 0.8671875f, 1e-6f);
 }
 
+// All three samplers against the tap-by-tap version on a light field smaller than their footprint, at shifts many times
+// its size in both directions and at fractions on either side of whole pixels: every border path is taken.
 TEST(NoiseMatchedKernel, CostVolumeSamplesLikeTheTapByTapSampler) {
   LightField light_field(LightFieldShape{3, 3, 5, 3, 3});
   std::mt19937 random(4);

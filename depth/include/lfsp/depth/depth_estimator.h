@@ -70,8 +70,7 @@ DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthO
                                      std::string* source = nullptr);
 
 // Occlusion-aware centre-view disparity: cost volume (with the half-patch choice near edges), semi-global
-// aggregation, sub-label refinement, weighted median,
-// textureless fill. Throws lfsp::Error on unusable input.
+// aggregation, sub-label refinement, weighted median, textureless fill. Throws lfsp::Error on unusable input.
 DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options);
 
 }  // namespace lfsp::depth
