@@ -177,9 +177,12 @@ cv::Mat PlainDecode(const JpegCoefficients& coefficients) {
 }
 
 // ProjectOntoData for row `by` of blocks; returns how far its coefficients moved, summed over the row in order, when
-// `measure` asks for it (0 otherwise). Built for AVX2 too, as DecodeRowOfBlocks.
+// `measure` asks for it (0 otherwise). `bin_fraction` of each bin is allowed, centred (1: the whole bin). Built for
+// AVX2 too, as DecodeRowOfBlocks.
 __attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(const JpegCoefficients& coefficients,
-                                                                            int by, cv::Mat& image, bool measure) {
+                                                                            int by, cv::Mat& image, bool measure,
+                                                                            float bin_fraction) {
+  const float half_bin = bin_fraction * 0.5f;  // exactly 0.5 for the whole bin, so the restoration's floats stay
   double moved = 0.0;
   for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
     const std::int16_t* block = coefficients.Block(bx, by);
@@ -192,7 +195,7 @@ __attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(cons
     float clamped[64];
     for (int k = 0; k < 64; ++k) {
       const float q = coefficients.quant[k], centre = static_cast<float>(block[k]) * q;
-      clamped[k] = std::clamp(dct[k], centre - 0.5f * q, centre + 0.5f * q);
+      clamped[k] = std::clamp(dct[k], centre - half_bin * q, centre + half_bin * q);
     }
     if (measure)
       for (int k = 0; k < 64; ++k) moved += std::abs(clamped[k] - dct[k]);
@@ -209,12 +212,12 @@ __attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(cons
 // 0..255 a decoder clamps to. Returns the mean distance the coefficients moved when `measure` asks for it (0
 // otherwise): summed in order in double precision, one chain of additions per row of blocks, that figure took most of
 // the step's time, and only the last round's is reported.
-double ProjectOntoData(const JpegCoefficients& coefficients, cv::Mat& image, bool measure) {
+double ProjectOntoData(const JpegCoefficients& coefficients, cv::Mat& image, bool measure, float bin_fraction = 1.0f) {
   // Per row of blocks, then added in order: the figure does not depend on the threads.
   std::vector<double> moved_per_row(static_cast<std::size_t>(coefficients.blocks_y), 0.0);
 #pragma omp parallel for schedule(static)
   for (int by = 0; by < coefficients.blocks_y; ++by)
-    moved_per_row[static_cast<std::size_t>(by)] = ProjectRowOfBlocks(coefficients, by, image, measure);
+    moved_per_row[static_cast<std::size_t>(by)] = ProjectRowOfBlocks(coefficients, by, image, measure, bin_fraction);
   double moved = 0.0;
   for (double row : moved_per_row) moved += row;
   return moved / static_cast<double>(coefficients.indices.size());
@@ -328,6 +331,14 @@ std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path
       break;
   }
   ThrowFileError(name, "not a readable JPEG (" + problem + ")");
+}
+
+void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction) {
+  if (image.type() != CV_32FC1 || image.cols != coefficients.blocks_x * 8 || image.rows != coefficients.blocks_y * 8)
+    throw Error("JPEG projection: the image must be float codes covering the file's " +
+                std::to_string(coefficients.blocks_x) + " x " + std::to_string(coefficients.blocks_y) + " blocks");
+  if (!(bin_fraction > 0.0 && bin_fraction <= 1.0)) throw Error("JPEG projection: the bin fraction must be in (0, 1]");
+  ProjectOntoData(coefficients, image, false, static_cast<float>(bin_fraction));
 }
 
 cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRestoreOptions& options,

@@ -150,6 +150,38 @@ TEST(JpegMosaic, RestorationKeepsAGreyMosaicsBrightness) {
   EXPECT_LT(std::abs(restored_darker - plain_darker), 0.2);
 }
 
+// The projection onto a file's bins, given room for the rounding to codes (60 % of each bin), gives a mosaic that an
+// encoder stores as the same coefficients: here the grey mosaic moved into the coloured one's bins. e2e/jpeg_capture
+// builds that way a capture of other colours with the same JPEG as a simulated one.
+TEST(JpegMosaic, ProjectionOntoTheBinsGivesAMosaicThatStoresTheSameJpeg) {
+  TempDir dir;
+  const FaintLensletMosaic coloured;
+  WriteImage(AsBytes(coloured.codes), dir / "coloured.jpg", 8, {{"Compression", "jpeg:75"}});
+  const JpegCoefficients stored = *ReadJpegCoefficients(dir / "coloured.jpg");
+  const cv::Mat grey = FaintLensletMosaic(false).codes;
+  cv::Mat mosaic = grey.clone();
+  for (int round = 0; round < 10; ++round) {
+    ProjectOntoJpegBins(stored, mosaic, 0.6);
+    AsBytes(mosaic).convertTo(mosaic, CV_32FC1);
+  }
+  WriteImage(AsBytes(mosaic), dir / "projected.jpg", 8, {{"Compression", "jpeg:75"}});
+  const JpegCoefficients again = *ReadJpegCoefficients(dir / "projected.jpg");
+  ASSERT_EQ(again.indices.size(), stored.indices.size());
+  int same_blocks = 0;
+  for (int by = 0; by < stored.blocks_y; ++by)
+    for (int bx = 0; bx < stored.blocks_x; ++bx)
+      same_blocks += std::equal(stored.Block(bx, by), stored.Block(bx, by) + 64, again.Block(bx, by));
+  const int blocks = stored.blocks_x * stored.blocks_y;
+  RecordProperty("blocks_stored_alike", std::to_string(same_blocks) + " of " + std::to_string(blocks));
+  // Every block but those where libjpeg's integer DCT and the float one round a coefficient apart (2 of 4096).
+  EXPECT_GE(same_blocks, blocks * 99 / 100);
+  // It moved: the grey mosaic's blocks are not in the coloured file's bins.
+  EXPECT_GT(cv::norm(mosaic, grey, cv::NORM_L1) / grey.total(), 0.5);
+  cv::Mat wrong_size(8, 8, CV_32FC1, cv::Scalar(0));
+  EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, wrong_size); }).find("64 x 64 blocks"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, mosaic, 0.0); }).find("bin fraction"), std::string::npos);
+}
+
 TEST(JpegMosaic, ColourJpegsAreNotMosaicsAndBrokenFilesAreRefused) {
   TempDir dir;
   WriteImage(cv::Mat(16, 16, CV_8UC3, cv::Scalar(10, 200, 30)), dir / "colour.jpg", 8);

@@ -1,12 +1,20 @@
 // Issue 49: a simulated F01 capture whose mosaic is stored the way the real F01 frames of ../shared/data/lytro_raw
 // were (dark, raw codes scaled to 8 bits, greyscale JPEG at quality 75), decoded with and without the JPEG
-// restoration, against the scene's ground truth and against the same 8-bit mosaic stored losslessly.
+// restoration, against the scene's ground truth and against the same 8-bit mosaic stored losslessly; and a mosaic of
+// other colours that stores the very same JPEG, which bounds what any decoder of the file can reach.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
 #include "lfsp/core/error.h"
+#include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
 #include "lfsp/decode/jpeg_block_gain.h"
+#include "lfsp/decode/jpeg_mosaic.h"
 #include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/view_quality.h"
 #include "test_support.h"
@@ -44,13 +52,18 @@ struct ThreeDecodes {
   Decoded restored;  // its JPEG with the restoration (30 rounds)
 };
 
-// Simulates `scene` as an F01 capture whose mosaic is also written as the real frames were (8 bits, quality 75), then
-// decodes it three ways against the truth and records every figure.
-ThreeDecodes SimulateAndDecode(const TempDir& dir, const std::string& scene, const std::string& exposure) {
+// Simulates `scene` as an F01 capture in dir/sim whose mosaic is also written as the real frames were (8 bits,
+// quality 75: capture_mosaic.jpg; losslessly: capture_mosaic.png), and returns its ideal light field.
+LightField Simulate(const TempDir& dir, const std::string& scene, const std::string& exposure) {
   const auto simulated = RunLfsp({"-q", "simulate", "--camera", "f01", "--scene", scene, "--exposure", exposure,
                                   "--mosaic-jpeg", "75", "--no-white-images", "--out", (dir / "sim").string()});
   if (simulated.exit_status != 0) throw Error("lfsp simulate --scene " + scene + " failed: " + simulated.err);
-  const LightField truth = LoadLightField(dir / "sim" / "ground_truth" / "decoded.h5").light_field;
+  return LoadLightField(dir / "sim" / "ground_truth" / "decoded.h5").light_field;
+}
+
+// Simulates `scene` (Simulate), then decodes it three ways against the truth and records every figure.
+ThreeDecodes SimulateAndDecode(const TempDir& dir, const std::string& scene, const std::string& exposure) {
+  const LightField truth = Simulate(dir, scene, exposure);
   const ThreeDecodes decodes{DecodeAndScore(dir / "sim" / "capture_mosaic.png", dir / "png.h5", truth, "0"),
                              DecodeAndScore(dir / "sim" / "capture_mosaic.jpg", dir / "plain.h5", truth, "0"),
                              DecodeAndScore(dir / "sim" / "capture_mosaic.jpg", dir / "restored.h5", truth, "30")};
@@ -74,7 +87,7 @@ TEST(JpegCapture, RestorationRecoversPartOfWhatTheJpegTookAndAddsNoBands) {
   // 0.0424 (1.4 % under the 0.95 x plain asserted), 3.2 (26.11 dB, 0.040, 3.4 while the prior's narrow filter let 2.9 %
   // of the luminance through as colour a round, which shrank every carrier's colour towards grey, the guessed colour of
   // zeroed blocks too). Most of the loss is colour the quantization zeroed in whole blocks, which no decoder can get
-  // back; issue 49's 2.5 dB is far from what this exposure allows (see BENCHMARKS.md).
+  // back: OneJpegHoldsACaptureOfOtherColours shows that issue 49's 2.5 dB is out of any decoder's reach here.
   EXPECT_GT(lossless.fidelity.psnr_db, 33.0);
   EXPECT_GT(restored.fidelity.psnr_db, plain.fidelity.psnr_db + 0.7);
   EXPECT_LT(restored.fidelity.chroma_error, 0.95 * plain.fidelity.chroma_error);
@@ -112,6 +125,91 @@ TEST(JpegCapture, LeavesInShadeShowTheRealFramesBands) {
   // gone there too, not only clipped away, although 0.68 above the lossless 1.88 remains.
   EXPECT_LT(restored.signed_bands, 0.5 * plain.signed_bands);
   EXPECT_GT(restored.fidelity.psnr_db, plain.fidelity.psnr_db - 0.3);
+}
+
+// Blocks of `mosaic` (8-bit codes) that an encoder at quality 75 stores otherwise than `stored`: written and read back.
+std::vector<cv::Rect> BlocksStoredOtherwise(const cv::Mat& mosaic, const decode::JpegCoefficients& stored,
+                                            const std::filesystem::path& scratch) {
+  cv::Mat bytes;
+  mosaic.convertTo(bytes, CV_8UC1);
+  WriteImage(bytes, scratch, 8, {{"Compression", "jpeg:75"}});
+  const decode::JpegCoefficients written = *decode::ReadJpegCoefficients(scratch);
+  std::vector<cv::Rect> differing;
+  for (int by = 0; by < stored.blocks_y; ++by)
+    for (int bx = 0; bx < stored.blocks_x; ++bx)
+      if (!std::equal(stored.Block(bx, by), stored.Block(bx, by) + 64, written.Block(bx, by)))
+        differing.emplace_back(bx * 8, by * 8, 8, 8);
+  return differing;
+}
+
+// Issue 49, item 1 asks the restored decode to come within 2.5 dB of the lossless one. The file cannot tell that
+// much: here is a second 8-bit mosaic, the capture's colour turned to its complement (each Bayer carrier's sign
+// flipped about the local luminance) wherever the quantization bins allow it, that the encoder stores as the very
+// same coefficients. Its lossless decode and the capture's are 20.6 dB apart (in the truth's units), so whatever a
+// decoder makes of the one JPEG, the triangle inequality puts it at most 26.6 dB from one of them, 9.0 dB below the
+// 35.55 dB the lossless decode reaches (BENCHMARKS.md, forty-first session, works the bound out for the target).
+TEST(JpegCapture, OneJpegHoldsACaptureOfOtherColours) {
+  TempDir dir;
+  const LightField truth = Simulate(dir, "two-horses", "0.3");
+  const cv::Mat original = ReadImage(dir / "sim" / "capture_mosaic.png").pixels * 255.0;  // CV_32FC1, 8-bit codes
+  const decode::JpegCoefficients stored = *decode::ReadJpegCoefficients(dir / "sim" / "capture_mosaic.jpg");
+  ASSERT_EQ(original.cols, stored.blocks_x * 8);
+  ASSERT_EQ(original.rows, stored.blocks_y * 8);
+  // The complementary colour: the binomial 3 x 3 mean holds no carrier (its response is 0 at each of them), so
+  // 2 x mean - mosaic flips every carrier and keeps the luminance.
+  const cv::Mat binomial = (cv::Mat_<float>(3, 1) << 0.25f, 0.5f, 0.25f);
+  cv::Mat luminance;
+  cv::sepFilter2D(original, luminance, CV_32F, binomial, binomial, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
+  cv::Mat other = 2.0 * luminance - original;
+  // Into the file's bins, with room for the rounding to codes (ProjectOntoJpegBins).
+  for (int round = 0; round < 20; ++round) {
+    decode::ProjectOntoJpegBins(stored, other, 0.6);
+    other.convertTo(other, CV_8UC1);  // rounds and saturates
+    other.convertTo(other, CV_32FC1);
+  }
+  // Blocks the encoder's integer DCT still rounds into another bin keep the capture's own codes.
+  std::vector<cv::Rect> differing;
+  std::size_t reverted = 0;
+  for (int round = 0; round < 5; ++round) {
+    differing = BlocksStoredOtherwise(other, stored, dir / "other.jpg");
+    for (const cv::Rect& block : differing) original(block).copyTo(other(block));
+    reverted += differing.size();
+    if (differing.empty()) break;
+  }
+  ASSERT_TRUE(differing.empty()) << differing.size() << " blocks still stored otherwise";
+  RecordProperty("blocks_reverted", std::to_string(reverted));
+  cv::Mat changed;
+  cv::absdiff(other, original, changed);
+  cv::resize(changed, changed, cv::Size(stored.blocks_x, stored.blocks_y), 0, 0, cv::INTER_AREA);
+  const double changed_blocks = cv::countNonZero(changed) / static_cast<double>(changed.total());
+  RecordProperty("changed_blocks", std::to_string(changed_blocks));
+  EXPECT_GT(changed_blocks, 0.5);  // measured 0.9998
+  cv::Mat other_bytes;
+  other.convertTo(other_bytes, CV_8UC1);
+  WriteImage(other_bytes, dir / "other.png", 8);
+
+  // Both decoded losslessly; the other one compared with the capture's in the truth's units (the capture's decode
+  // times its channel gains against the truth).
+  const auto decode_png = [&](const std::filesystem::path& png, const std::filesystem::path& out) {
+    const auto result =
+        RunLfsp({"-q", "decode", png.string(), "--camera", "f01", "--colour", "linear", "--out", out.string()});
+    EXPECT_EQ(result.exit_status, 0) << result.err;
+    return LoadLightField(out).light_field;
+  };
+  LightField capture = decode_png(dir / "sim" / "capture_mosaic.png", dir / "capture.h5");
+  const LightField other_decode = decode_png(dir / "other.png", dir / "other.h5");
+  const decode::CentreFidelity capture_vs_truth = decode::CompareCentreWithTruth(capture, truth);
+  cv::Mat centre = capture.View(capture.shape().Centre());
+  cv::multiply(centre, cv::Scalar(capture_vs_truth.gains[0], capture_vs_truth.gains[1], capture_vs_truth.gains[2]),
+               centre);
+  const decode::CentreFidelity apart = decode::CompareCentreWithTruth(other_decode, capture);
+  RecordProperty("capture_lossless_psnr_db", std::to_string(capture_vs_truth.psnr_db));
+  RecordProperty("other_vs_capture_psnr_db", std::to_string(apart.psnr_db));
+  RecordProperty("other_vs_capture_chroma_error", std::to_string(apart.chroma_error));
+  // Measured 35.55 dB and 20.58 dB (chroma error 0.105): any decoder of the shared JPEG is at most 26.6 dB from one of
+  // the two lossless decodes, where the target asks 33.05 dB of the truth.
+  EXPECT_GT(capture_vs_truth.psnr_db, 33.0);
+  EXPECT_LT(apart.psnr_db + 20.0 * std::log10(2.0), capture_vs_truth.psnr_db - 2.5);
 }
 
 }  // namespace

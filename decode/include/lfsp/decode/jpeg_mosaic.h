@@ -41,6 +41,13 @@ struct JpegCoefficients {
 // (CheckDeclaredAllocation).
 std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path& path);
 
+// Moves `image` (CV_32FC1 codes, blocks_x * 8 wide and blocks_y * 8 high) to the nearest mosaic the coefficients
+// could have come from: every block's DCT coefficients into the central `bin_fraction` of the quantization bin the
+// file records (1: the whole bin), and every pixel into 0..255. In place. Less than the whole bin leaves room for
+// rounding the result to 8-bit codes that a JPEG encoder quantizes back to the same coefficients (e2e/jpeg_capture
+// builds, that way, a mosaic of other colours that stores the same JPEG).
+void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction = 1.0);
+
 struct MosaicRestoreOptions {
   // Alternations between the two constraints below. 0 = the plain JPEG decode.
   int iterations = 30;
