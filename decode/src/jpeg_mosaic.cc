@@ -182,7 +182,8 @@ cv::Mat PlainDecode(const JpegCoefficients& coefficients) {
 __attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(const JpegCoefficients& coefficients,
                                                                             int by, cv::Mat& image, bool measure,
                                                                             float bin_fraction) {
-  const float half_bin = bin_fraction * 0.5f;  // exactly 0.5 for the whole bin, so the restoration's floats stay
+  // Exactly 0.5 for the whole bin, and 0.5 q is exact, so the restoration's results are the same bit for bit.
+  const float half_bin = bin_fraction * 0.5f;
   double moved = 0.0;
   for (int bx = 0; bx < coefficients.blocks_x; ++bx) {
     const std::int16_t* block = coefficients.Block(bx, by);
@@ -208,11 +209,11 @@ __attribute__((target_clones("avx2", "default"))) double ProjectRowOfBlocks(cons
   return moved;
 }
 
-// Moves every block's coefficients back into the quantization bins the file records, and every pixel into the
-// 0..255 a decoder clamps to. Returns the mean distance the coefficients moved when `measure` asks for it (0
-// otherwise): summed in order in double precision, one chain of additions per row of blocks, that figure took most of
-// the step's time, and only the last round's is reported.
-double ProjectOntoData(const JpegCoefficients& coefficients, cv::Mat& image, bool measure, float bin_fraction = 1.0f) {
+// Moves every block's coefficients back into the quantization bins the file records (the central `bin_fraction` of
+// each: ProjectOntoJpegBins), and every pixel into the 0..255 a decoder clamps to. Returns the mean distance the
+// coefficients moved when `measure` asks for it (0 otherwise): summed in order in double precision, one chain of
+// additions per row of blocks, that figure took most of the step's time, and only the last round's is reported.
+double ProjectOntoData(const JpegCoefficients& coefficients, cv::Mat& image, bool measure, float bin_fraction) {
   // Per row of blocks, then added in order: the figure does not depend on the threads.
   std::vector<double> moved_per_row(static_cast<std::size_t>(coefficients.blocks_y), 0.0);
 #pragma omp parallel for schedule(static)
@@ -335,9 +336,13 @@ std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path
 
 void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction) {
   if (image.type() != CV_32FC1 || image.cols != coefficients.blocks_x * 8 || image.rows != coefficients.blocks_y * 8)
-    throw Error("JPEG projection: the image must be float codes covering the file's " +
-                std::to_string(coefficients.blocks_x) + " x " + std::to_string(coefficients.blocks_y) + " blocks");
-  if (!(bin_fraction > 0.0 && bin_fraction <= 1.0)) throw Error("JPEG projection: the bin fraction must be in (0, 1]");
+    throw Error("JPEG projection: the image is " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
+                (image.type() == CV_32FC1 ? " float" : " not float") + "; the file's " +
+                std::to_string(coefficients.blocks_x) + " x " + std::to_string(coefficients.blocks_y) +
+                " blocks need " + std::to_string(coefficients.blocks_x * 8) + " x " +
+                std::to_string(coefficients.blocks_y * 8) + " float codes");
+  if (!(bin_fraction > 0.0 && bin_fraction <= 1.0))
+    throw Error("JPEG projection: bin fraction " + std::to_string(bin_fraction) + " is outside (0, 1]");
   ProjectOntoData(coefficients, image, false, static_cast<float>(bin_fraction));
 }
 
@@ -351,7 +356,7 @@ cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRest
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
     const bool last_round = iteration + 1 == options.iterations;
-    const double moved = ProjectOntoData(coefficients, image, last_round);
+    const double moved = ProjectOntoData(coefficients, image, last_round, 1.0f);
     if (last_round) last = moved;
   }
   if (options.iterations > 0) {

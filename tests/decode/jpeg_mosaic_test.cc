@@ -157,7 +157,7 @@ TEST(JpegMosaic, ProjectionOntoTheBinsGivesAMosaicThatStoresTheSameJpeg) {
   TempDir dir;
   const FaintLensletMosaic coloured;
   WriteImage(AsBytes(coloured.codes), dir / "coloured.jpg", 8, {{"Compression", "jpeg:75"}});
-  const JpegCoefficients stored = *ReadJpegCoefficients(dir / "coloured.jpg");
+  const JpegCoefficients stored = ReadJpegCoefficients(dir / "coloured.jpg").value();
   const cv::Mat grey = FaintLensletMosaic(false).codes;
   cv::Mat mosaic = grey.clone();
   for (int round = 0; round < 10; ++round) {
@@ -165,12 +165,12 @@ TEST(JpegMosaic, ProjectionOntoTheBinsGivesAMosaicThatStoresTheSameJpeg) {
     AsBytes(mosaic).convertTo(mosaic, CV_32FC1);
   }
   WriteImage(AsBytes(mosaic), dir / "projected.jpg", 8, {{"Compression", "jpeg:75"}});
-  const JpegCoefficients again = *ReadJpegCoefficients(dir / "projected.jpg");
+  const JpegCoefficients again = ReadJpegCoefficients(dir / "projected.jpg").value();
   ASSERT_EQ(again.indices.size(), stored.indices.size());
+  EXPECT_EQ(again.quant, stored.quant);
   int same_blocks = 0;
   for (int by = 0; by < stored.blocks_y; ++by)
-    for (int bx = 0; bx < stored.blocks_x; ++bx)
-      same_blocks += std::equal(stored.Block(bx, by), stored.Block(bx, by) + 64, again.Block(bx, by));
+    for (int bx = 0; bx < stored.blocks_x; ++bx) same_blocks += stored.SameBlock(again, bx, by);
   const int blocks = stored.blocks_x * stored.blocks_y;
   RecordProperty("blocks_stored_alike", std::to_string(same_blocks) + " of " + std::to_string(blocks));
   // Every block but those where libjpeg's integer DCT and the float one round a coefficient apart (2 of 4096).
@@ -178,8 +178,12 @@ TEST(JpegMosaic, ProjectionOntoTheBinsGivesAMosaicThatStoresTheSameJpeg) {
   // It moved: the grey mosaic's blocks are not in the coloured file's bins.
   EXPECT_GT(cv::norm(mosaic, grey, cv::NORM_L1) / grey.total(), 0.5);
   cv::Mat wrong_size(8, 8, CV_32FC1, cv::Scalar(0));
-  EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, wrong_size); }).find("64 x 64 blocks"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, mosaic, 0.0); }).find("bin fraction"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, wrong_size); }).find("is 8 x 8 float; the file's 64 x 64 blocks"),
+            std::string::npos)
+      << ErrorOf([&] { ProjectOntoJpegBins(stored, wrong_size); });
+  for (const double fraction : {0.0, 1.5, std::nan("")})
+    EXPECT_NE(ErrorOf([&] { ProjectOntoJpegBins(stored, mosaic, fraction); }).find("is outside (0, 1]"),
+              std::string::npos);
 }
 
 TEST(JpegMosaic, ColourJpegsAreNotMosaicsAndBrokenFilesAreRefused) {

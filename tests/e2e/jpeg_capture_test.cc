@@ -1,7 +1,7 @@
 // Issue 49: a simulated F01 capture whose mosaic is stored the way the real F01 frames of ../shared/data/lytro_raw
 // were (dark, raw codes scaled to 8 bits, greyscale JPEG at quality 75), decoded with and without the JPEG
 // restoration, against the scene's ground truth and against the same 8-bit mosaic stored losslessly; and a mosaic of
-// other colours that stores the very same JPEG, which bounds what any decoder of the file can reach.
+// other colours that stores the very same JPEG, which no decoder can tell from the capture.
 
 #include <gtest/gtest.h>
 
@@ -32,12 +32,18 @@ struct Decoded {
   double block_rows = 0.0;    // BlockRowLuminance of the centre view, % of the local level
 };
 
-Decoded DecodeAndScore(const std::filesystem::path& mosaic, const std::filesystem::path& out, const LightField& truth,
-                       const std::string& restore_iterations) {
+// `lfsp decode MOSAIC --camera f01 --colour linear` into `out` (restore_iterations: `--jpeg-restore`, for JPEGs).
+LightField DecodeF01(const std::filesystem::path& mosaic, const std::filesystem::path& out,
+                     const std::string& restore_iterations = "30") {
   const auto result = RunLfsp({"-q", "decode", mosaic.string(), "--camera", "f01", "--colour", "linear",
                                "--jpeg-restore", restore_iterations, "--out", out.string()});
   EXPECT_EQ(result.exit_status, 0) << result.err;
-  const LightField decoded = LoadLightField(out).light_field;
+  return LoadLightField(out).light_field;
+}
+
+Decoded DecodeAndScore(const std::filesystem::path& mosaic, const std::filesystem::path& out, const LightField& truth,
+                       const std::string& restore_iterations) {
+  const LightField decoded = DecodeF01(mosaic, out, restore_iterations);
   const nlohmann::json summary = lfsp::testing::LoadJson(out.parent_path() / (out.stem().string() + ".summary.json"));
   return {decode::CompareCentreWithTruth(decoded, truth), decode::ChromaBandRatio(decoded, decoded.shape().Centre()),
           summary["decode"]["centre_bands"]["chroma"].get<double>(),
@@ -87,7 +93,8 @@ TEST(JpegCapture, RestorationRecoversPartOfWhatTheJpegTookAndAddsNoBands) {
   // 0.0424 (1.4 % under the 0.95 x plain asserted), 3.2 (26.11 dB, 0.040, 3.4 while the prior's narrow filter let 2.9 %
   // of the luminance through as colour a round, which shrank every carrier's colour towards grey, the guessed colour of
   // zeroed blocks too). Most of the loss is colour the quantization zeroed in whole blocks, which no decoder can get
-  // back: OneJpegHoldsACaptureOfOtherColours shows that issue 49's 2.5 dB is out of any decoder's reach here.
+  // back: OneJpegHoldsACaptureOfOtherColours shows that no decoder meets issue 49's 2.5 dB on both this capture and
+  // one of other colours that stores the same file.
   EXPECT_GT(lossless.fidelity.psnr_db, 33.0);
   EXPECT_GT(restored.fidelity.psnr_db, plain.fidelity.psnr_db + 0.7);
   EXPECT_LT(restored.fidelity.chroma_error, 0.95 * plain.fidelity.chroma_error);
@@ -133,83 +140,99 @@ std::vector<cv::Rect> BlocksStoredOtherwise(const cv::Mat& mosaic, const decode:
   cv::Mat bytes;
   mosaic.convertTo(bytes, CV_8UC1);
   WriteImage(bytes, scratch, 8, {{"Compression", "jpeg:75"}});
-  const decode::JpegCoefficients written = *decode::ReadJpegCoefficients(scratch);
+  const decode::JpegCoefficients written = decode::ReadJpegCoefficients(scratch).value();
+  EXPECT_EQ(written.quant, stored.quant);  // the same table, or the same indices would not be the same file
   std::vector<cv::Rect> differing;
   for (int by = 0; by < stored.blocks_y; ++by)
     for (int bx = 0; bx < stored.blocks_x; ++bx)
-      if (!std::equal(stored.Block(bx, by), stored.Block(bx, by) + 64, written.Block(bx, by)))
-        differing.emplace_back(bx * 8, by * 8, 8, 8);
+      if (!stored.SameBlock(written, bx, by)) differing.emplace_back(bx * 8, by * 8, 8, 8);
   return differing;
 }
 
-// Issue 49, item 1 asks the restored decode to come within 2.5 dB of the lossless one. The file cannot tell that
-// much: here is a second 8-bit mosaic, the capture's colour turned to its complement (each Bayer carrier's sign
-// flipped about the local luminance) wherever the quantization bins allow it, that the encoder stores as the very
-// same coefficients. Its lossless decode and the capture's are 20.6 dB apart (in the truth's units), so whatever a
-// decoder makes of the one JPEG, the triangle inequality puts it at most 26.6 dB from one of them, 9.0 dB below the
-// 35.55 dB the lossless decode reaches (BENCHMARKS.md, forty-first session, works the bound out for the target).
+// The least error, in the centre view, that one decoded picture can have against both `a` and `b` at once, with
+// per-channel gains fitted to each as CompareCentreWithTruth fits them: rms over the samples of the larger of the
+// two errors is at least this. With gains free, a channel of the picture is a direction; its errors against a's and
+// b's channel are |a| sin(x) and |b| sin(t - x), t the angle between those two, and the least sum of their squares
+// over x is (|a|^2 + |b|^2 - sqrt(|a|^4 + |b|^4 + 2 |a|^2 |b|^2 cos 2t)) / 2; the larger error is at least half the
+// sum. Both views in the same units, `border` pixels left out as CompareCentreWithTruth leaves them.
+double LeastErrorAgainstBoth(const cv::Mat& a, const cv::Mat& b, int border = 8) {
+  const cv::Rect inside(border, border, a.cols - 2 * border, a.rows - 2 * border);
+  double least = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    cv::Mat ac, bc;
+    cv::extractChannel(a(inside), ac, c);
+    cv::extractChannel(b(inside), bc, c);
+    const double aa = ac.dot(ac), bb = bc.dot(bc), ab = ac.dot(bc);
+    const double cos_2t = 2.0 * ab * ab / (aa * bb) - 1.0;
+    least += 0.5 * (aa + bb - std::sqrt(aa * aa + bb * bb + 2.0 * aa * bb * cos_2t));
+  }
+  return std::sqrt(0.5 * least / (3.0 * static_cast<double>(inside.area())));
+}
+
+// Issue 49, item 1 asks the restored decode to come within 2.5 dB of the lossless one. The file cannot tell that much.
+// Here is a second 8-bit mosaic, the capture's colour turned to its complement wherever the quantization bins allow
+// it, that the encoder stores as the very same coefficients: a decoder, whatever it is, makes one picture of both.
+// Measured the way the issue measures (gains fitted per channel), that picture is on one of the two at most 31.9 dB
+// from the truth, where the target asks 33.05 dB of both (the other mosaic's truth taken to lie as far from its
+// lossless decode as the capture's does). Meeting the target on this capture would take a prior that prefers its
+// colours to their complement (BENCHMARKS.md, forty-first session).
 TEST(JpegCapture, OneJpegHoldsACaptureOfOtherColours) {
   TempDir dir;
   const LightField truth = Simulate(dir, "two-horses", "0.3");
   const cv::Mat original = ReadImage(dir / "sim" / "capture_mosaic.png").pixels * 255.0;  // CV_32FC1, 8-bit codes
-  const decode::JpegCoefficients stored = *decode::ReadJpegCoefficients(dir / "sim" / "capture_mosaic.jpg");
+  const decode::JpegCoefficients stored = decode::ReadJpegCoefficients(dir / "sim" / "capture_mosaic.jpg").value();
   ASSERT_EQ(original.cols, stored.blocks_x * 8);
   ASSERT_EQ(original.rows, stored.blocks_y * 8);
-  // The complementary colour: the binomial 3 x 3 mean holds no carrier (its response is 0 at each of them), so
-  // 2 x mean - mosaic flips every carrier and keeps the luminance.
+  // The complement: the binomial 3 x 3 mean has no response at any Bayer carrier, so 2 x mean - mosaic flips every
+  // carrier's sign. It flips the finest luminance detail too (its response is 2 H - 1); the bins put that back.
   const cv::Mat binomial = (cv::Mat_<float>(3, 1) << 0.25f, 0.5f, 0.25f);
-  cv::Mat luminance;
-  cv::sepFilter2D(original, luminance, CV_32F, binomial, binomial, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
-  cv::Mat other = 2.0 * luminance - original;
+  cv::Mat mean;
+  cv::sepFilter2D(original, mean, CV_32F, binomial, binomial, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
+  cv::Mat other = 2.0 * mean - original;
   // Into the file's bins, with room for the rounding to codes (ProjectOntoJpegBins).
   for (int round = 0; round < 20; ++round) {
     decode::ProjectOntoJpegBins(stored, other, 0.6);
     other.convertTo(other, CV_8UC1);  // rounds and saturates
     other.convertTo(other, CV_32FC1);
   }
-  // Blocks the encoder's integer DCT still rounds into another bin keep the capture's own codes.
-  std::vector<cv::Rect> differing;
-  std::size_t reverted = 0;
-  for (int round = 0; round < 5; ++round) {
-    differing = BlocksStoredOtherwise(other, stored, dir / "other.jpg");
-    for (const cv::Rect& block : differing) original(block).copyTo(other(block));
-    reverted += differing.size();
-    if (differing.empty()) break;
-  }
-  ASSERT_TRUE(differing.empty()) << differing.size() << " blocks still stored otherwise";
-  RecordProperty("blocks_reverted", std::to_string(reverted));
+  // Where the encoder's integer DCT still rounds a coefficient into another bin, the block keeps the capture's codes.
+  // A greyscale JPEG's blocks are coded apart, so once is enough.
+  const std::vector<cv::Rect> differing = BlocksStoredOtherwise(other, stored, dir / "other.jpg");
+  for (const cv::Rect& block : differing) original(block).copyTo(other(block));
+  RecordProperty("blocks_reverted", std::to_string(differing.size()));
+  ASSERT_TRUE(BlocksStoredOtherwise(other, stored, dir / "other.jpg").empty());
   cv::Mat changed;
   cv::absdiff(other, original, changed);
+  // INTER_AREA at the integer factor 8 is each block's mean: nonzero where any of its codes changed.
   cv::resize(changed, changed, cv::Size(stored.blocks_x, stored.blocks_y), 0, 0, cv::INTER_AREA);
-  const double changed_blocks = cv::countNonZero(changed) / static_cast<double>(changed.total());
-  RecordProperty("changed_blocks", std::to_string(changed_blocks));
-  EXPECT_GT(changed_blocks, 0.5);  // measured 0.9998
+  const double changed_block_share = cv::countNonZero(changed) / static_cast<double>(changed.total());
+  RecordProperty("changed_block_share", std::to_string(changed_block_share));
+  EXPECT_GT(changed_block_share, 0.99);  // measured 0.9998
   cv::Mat other_bytes;
   other.convertTo(other_bytes, CV_8UC1);
   WriteImage(other_bytes, dir / "other.png", 8);
 
-  // Both decoded losslessly; the other one compared with the capture's in the truth's units (the capture's decode
-  // times its channel gains against the truth).
-  const auto decode_png = [&](const std::filesystem::path& png, const std::filesystem::path& out) {
-    const auto result =
-        RunLfsp({"-q", "decode", png.string(), "--camera", "f01", "--colour", "linear", "--out", out.string()});
-    EXPECT_EQ(result.exit_status, 0) << result.err;
-    return LoadLightField(out).light_field;
-  };
-  LightField capture = decode_png(dir / "sim" / "capture_mosaic.png", dir / "capture.h5");
-  const LightField other_decode = decode_png(dir / "other.png", dir / "other.h5");
-  const decode::CentreFidelity capture_vs_truth = decode::CompareCentreWithTruth(capture, truth);
-  cv::Mat centre = capture.View(capture.shape().Centre());
-  cv::multiply(centre, cv::Scalar(capture_vs_truth.gains[0], capture_vs_truth.gains[1], capture_vs_truth.gains[2]),
-               centre);
-  const decode::CentreFidelity apart = decode::CompareCentreWithTruth(other_decode, capture);
-  RecordProperty("capture_lossless_psnr_db", std::to_string(capture_vs_truth.psnr_db));
-  RecordProperty("other_vs_capture_psnr_db", std::to_string(apart.psnr_db));
-  RecordProperty("other_vs_capture_chroma_error", std::to_string(apart.chroma_error));
-  // Measured 35.55 dB and 20.58 dB (chroma error 0.105): any decoder of the shared JPEG is at most 26.6 dB from one of
-  // the two lossless decodes, where the target asks 33.05 dB of the truth.
-  EXPECT_GT(capture_vs_truth.psnr_db, 33.0);
-  EXPECT_LT(apart.psnr_db + 20.0 * std::log10(2.0), capture_vs_truth.psnr_db - 2.5);
+  // Both decoded losslessly, in the truth's units (the capture's gains against the truth, for both: one camera).
+  LightField capture = DecodeF01(dir / "sim" / "capture_mosaic.png", dir / "capture.h5");
+  LightField other_decode = DecodeF01(dir / "other.png", dir / "other.h5");
+  const decode::CentreFidelity lossless = decode::CompareCentreWithTruth(capture, truth);
+  const cv::Scalar gains(lossless.gains[0], lossless.gains[1], lossless.gains[2]);
+  cv::Mat capture_centre = capture.View(capture.shape().Centre()),
+          other_centre = other_decode.View(capture.shape().Centre());
+  cv::multiply(capture_centre, gains, capture_centre);
+  cv::multiply(other_centre, gains, other_centre);
+  const double apart_db = decode::CompareCentreWithTruth(other_decode, capture).psnr_db;
+  const auto rms_of_db = [](double db) { return std::pow(10.0, -db / 20.0); };
+  const double least = LeastErrorAgainstBoth(capture_centre, other_centre) - rms_of_db(lossless.psnr_db);
+  const double best_on_both_db = -20.0 * std::log10(least);
+  RecordProperty("capture_lossless_psnr_db", std::to_string(lossless.psnr_db));
+  RecordProperty("other_vs_capture_psnr_db", std::to_string(apart_db));
+  RecordProperty("best_on_both_psnr_db", std::to_string(best_on_both_db));
+  // Measured 35.55 dB; the two lossless decodes 20.58 dB apart (gains fitted); one picture of both at most 31.96 dB
+  // from one of the truths, where the target asks lossless - 2.5 = 33.05 dB.
+  EXPECT_GT(lossless.psnr_db, 33.0);
+  ASSERT_GT(least, 0.0);
+  EXPECT_LT(best_on_both_db, lossless.psnr_db - 2.5);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 // whole blocks. Micro-lens rows 8.6 px apart sample those 8-px cycles at a slowly drifting phase, so every view
 // shows colour bands about 14 rows apart. RestoreJpegMosaic undoes what it can from the coefficients themselves.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -34,6 +35,11 @@ struct JpegCoefficients {
     return indices.data() +
            (static_cast<std::size_t>(by) * static_cast<std::size_t>(blocks_x) + static_cast<std::size_t>(bx)) * 64;
   }
+  // Whether block (bx, by) holds the same 64 quantized values in `other` (same block layout); with the same `quant`,
+  // a decoder cannot tell the two blocks apart.
+  bool SameBlock(const JpegCoefficients& other, int bx, int by) const {
+    return std::equal(Block(bx, by), Block(bx, by) + 64, other.Block(bx, by));
+  }
 };
 
 // The coefficients of a greyscale (one-component, 8-bit) JPEG, or nothing when the file is a colour or 12-bit JPEG.
@@ -41,11 +47,12 @@ struct JpegCoefficients {
 // (CheckDeclaredAllocation).
 std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path& path);
 
-// Moves `image` (CV_32FC1 codes, blocks_x * 8 wide and blocks_y * 8 high) to the nearest mosaic the coefficients
-// could have come from: every block's DCT coefficients into the central `bin_fraction` of the quantization bin the
-// file records (1: the whole bin), and every pixel into 0..255. In place. Less than the whole bin leaves room for
-// rounding the result to 8-bit codes that a JPEG encoder quantizes back to the same coefficients (e2e/jpeg_capture
-// builds, that way, a mosaic of other colours that stores the same JPEG).
+// The restoration's projection on its own, in place on `image` (CV_32FC1 codes, blocks_x * 8 wide and blocks_y * 8
+// high): each block's DCT coefficients move to the nearest point of the central `bin_fraction` of the quantization
+// bins the file records (1: the whole bins), then every pixel is clamped to 0..255, which may move a coefficient out
+// again (repeat to converge). Less than the whole bin leaves room for rounding the result to 8-bit codes that an
+// encoder quantizes back to the same coefficients: e2e/jpeg_capture builds that way a mosaic of other colours that
+// stores the same JPEG as a simulated capture.
 void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction = 1.0);
 
 struct MosaicRestoreOptions {
