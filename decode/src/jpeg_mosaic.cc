@@ -313,6 +313,17 @@ void EndOnThePrior(cv::Mat& image, double narrow_sigma, double wide_sigma) {
   ClampToCodes(image);
 }
 
+// Refuses an image that is not float codes covering every block of the file: `what` names it in the message.
+void RequireCodesCoveringBlocks(const cv::Mat& image, const JpegCoefficients& coefficients, const std::string& what) {
+  if (image.type() == CV_32FC1 && image.cols == coefficients.blocks_x * 8 && image.rows == coefficients.blocks_y * 8)
+    return;
+  throw Error(what + " is " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
+              (image.type() == CV_32FC1 ? " float" : " not float") + "; the file's " +
+              std::to_string(coefficients.blocks_x) + " x " + std::to_string(coefficients.blocks_y) + " blocks need " +
+              std::to_string(coefficients.blocks_x * 8) + " x " + std::to_string(coefficients.blocks_y * 8) +
+              " float codes");
+}
+
 }  // namespace
 
 std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path& path) {
@@ -335,12 +346,7 @@ std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path
 }
 
 void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction) {
-  if (image.type() != CV_32FC1 || image.cols != coefficients.blocks_x * 8 || image.rows != coefficients.blocks_y * 8)
-    throw Error("JPEG projection: the image is " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
-                (image.type() == CV_32FC1 ? " float" : " not float") + "; the file's " +
-                std::to_string(coefficients.blocks_x) + " x " + std::to_string(coefficients.blocks_y) +
-                " blocks need " + std::to_string(coefficients.blocks_x * 8) + " x " +
-                std::to_string(coefficients.blocks_y * 8) + " float codes");
+  RequireCodesCoveringBlocks(image, coefficients, "JPEG projection: the image");
   if (!(bin_fraction > 0.0 && bin_fraction <= 1.0))
     throw Error("JPEG projection: bin fraction " + std::to_string(bin_fraction) + " is outside (0, 1]");
   ProjectOntoData(coefficients, image, false, static_cast<float>(bin_fraction));
@@ -350,8 +356,12 @@ cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRest
                           MosaicRestoreReport* report) {
   if (options.iterations < 0 || !(options.narrow_sigma > 0.0) || !(options.wide_sigma > options.narrow_sigma))
     throw Error("JPEG mosaic restoration: need iterations >= 0 and 0 < narrow sigma < wide sigma");
-  cv::Mat image = PlainDecode(coefficients);
-  const cv::Mat plain = options.iterations > 0 ? image.clone() : cv::Mat();
+  const cv::Mat& start = options.start;
+  if (!start.empty()) RequireCodesCoveringBlocks(start, coefficients, "JPEG mosaic restoration: the start");
+  cv::Mat image = start.empty() ? PlainDecode(coefficients) : start.clone();
+  // For the report's mean change only.
+  const cv::Mat plain =
+      options.iterations == 0 ? cv::Mat() : (start.empty() ? image.clone() : PlainDecode(coefficients));
   double last = 0.0;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);

@@ -186,6 +186,29 @@ TEST(JpegMosaic, ProjectionOntoTheBinsGivesAMosaicThatStoresTheSameJpeg) {
               std::string::npos);
 }
 
+// The rounds start from the plain decode unless told otherwise: started from the plain decode as returned (clamped to
+// 0..255, where the rounds' own start keeps the ringing beyond), within 0.06 codes; started from another mosaic,
+// another result; a start of the wrong size is refused.
+TEST(JpegMosaic, RestorationStartsWhereItIsTold) {
+  TempDir dir;
+  const FaintLensletMosaic mosaic;
+  WriteImage(AsBytes(mosaic.codes), dir / "mosaic.jpg", 8, {{"Compression", "jpeg:75"}});
+  const JpegCoefficients coefficients = ReadJpegCoefficients(dir / "mosaic.jpg").value();
+  MosaicRestoreOptions plain;
+  plain.iterations = 0;
+  MosaicRestoreOptions from_plain;
+  from_plain.start = RestoreJpegMosaic(coefficients, plain);
+  const cv::Mat restored = RestoreJpegMosaic(coefficients);
+  EXPECT_LT(cv::norm(RestoreJpegMosaic(coefficients, from_plain), restored, cv::NORM_INF), 0.1);
+  MosaicRestoreOptions from_grey;
+  from_grey.start = FaintLensletMosaic(false).codes;
+  EXPECT_GT(cv::norm(RestoreJpegMosaic(coefficients, from_grey), restored, cv::NORM_L1) / restored.total(), 0.1);
+  MosaicRestoreOptions wrong;
+  wrong.start = cv::Mat(8, 8, CV_32FC1, cv::Scalar(0));
+  EXPECT_NE(ErrorOf([&] { (void)RestoreJpegMosaic(coefficients, wrong); }).find("the start is 8 x 8 float"),
+            std::string::npos);
+}
+
 TEST(JpegMosaic, ColourJpegsAreNotMosaicsAndBrokenFilesAreRefused) {
   TempDir dir;
   WriteImage(cv::Mat(16, 16, CV_8UC3, cv::Scalar(10, 200, 30)), dir / "colour.jpg", 8);

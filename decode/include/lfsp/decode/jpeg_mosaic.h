@@ -66,6 +66,10 @@ struct MosaicRestoreOptions {
   // (jpeg_mosaic.cc, NarrowCarrierKernel).
   double narrow_sigma = 0.85;
   double wide_sigma = 32.0;
+  // Where the rounds start: CV_32FC1 codes covering the file's blocks (blocks_x * 8 by blocks_y * 8), or empty for
+  // the plain decode. e2e/jpeg_capture starts them from a mosaic of other colours, to find the smooth mosaic of
+  // those colours that the file equally allows.
+  cv::Mat start;
 };
 
 struct MosaicRestoreReport {
