@@ -56,7 +56,8 @@ std::optional<JpegCoefficients> ReadJpegCoefficients(const std::filesystem::path
 void ProjectOntoJpegBins(const JpegCoefficients& coefficients, cv::Mat& image, double bin_fraction = 1.0);
 
 struct MosaicRestoreOptions {
-  // Alternations between the two constraints below. 0 = the plain JPEG decode.
+  // Alternations between the two constraints below. 0 = the start as given, clamped to 0..255 (by default the plain
+  // JPEG decode).
   int iterations = 30;
   // The colour of the mosaic (each Bayer carrier demodulated to base band) is taken to vary smoothly: what lies
   // between these two scales (pixels) around each carrier is taken out at every iteration. The narrow one holds the
@@ -66,9 +67,10 @@ struct MosaicRestoreOptions {
   // (jpeg_mosaic.cc, NarrowCarrierKernel).
   double narrow_sigma = 0.85;
   double wide_sigma = 32.0;
-  // Where the rounds start: CV_32FC1 codes covering the file's blocks (blocks_x * 8 by blocks_y * 8), or empty for
-  // the plain decode. e2e/jpeg_capture starts them from a mosaic of other colours, to find the smooth mosaic of
-  // those colours that the file equally allows.
+  // Where the rounds start: CV_32FC1 codes covering the file's blocks (blocks_x * 8 by blocks_y * 8, which is more
+  // than the result's width x height when the image is not a multiple of 8), or empty for the plain decode. The
+  // result depends on it: e2e/jpeg_capture starts from a mosaic of other colours to find a smooth mosaic of those
+  // colours near the file's bins.
   cv::Mat start;
 };
 
