@@ -289,6 +289,34 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
   }
 }
 
+// The mosaic in the space where the prior measures colour (MosaicRestoreOptions::grey_gains): (code - black) x gain
+// per Bayer phase, or back. Nothing to do for the sensor's own grey.
+bool MeasuresColourFromSensorGrey(const MosaicRestoreOptions& options) {
+  return std::all_of(options.grey_gains.begin(), options.grey_gains.end(), [](float g) { return g == 1.0f; });
+}
+
+void ToGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options, bool forward) {
+  const float black = options.grey_black;
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < image.rows; ++y) {
+    float* row = image.ptr<float>(y);
+    const float* gains = options.grey_gains.data() + 2 * (y & 1);
+    for (int x = 0; x < image.cols; ++x)
+      row[x] = forward ? (row[x] - black) * gains[x & 1] : row[x] / gains[x & 1] + black;
+  }
+}
+
+// The prior step about the options' grey.
+void SmoothColourAboutGrey(cv::Mat& image, const MosaicRestoreOptions& options) {
+  if (MeasuresColourFromSensorGrey(options)) {
+    SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
+    return;
+  }
+  ToGreyBalanced(image, options, true);
+  SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
+  ToGreyBalanced(image, options, false);
+}
+
 // Into the 0..255 a decoder clamps to, in place (a matrix expression would allocate two more sensor-size images).
 void ClampToCodes(cv::Mat& image) {
   cv::min(image, 255.0f, image);
@@ -301,14 +329,14 @@ void ClampToCodes(cv::Mat& image) {
 // leaves it out, at the price of the data's colour finer than the wide scale. Pixels the last projection left at full
 // scale are clipped highlights and keep their value: the prior would tint them with the colour around, and the
 // decoder neutralises clipped highlights by their level.
-void EndOnThePrior(cv::Mat& image, double narrow_sigma, double wide_sigma) {
+void EndOnThePrior(cv::Mat& image, const MosaicRestoreOptions& options) {
   constexpr float kFullScale = 254.5f;  // the projection clamps to 255; a clipped JPEG pixel decodes at 255
   CV_Assert(image.isContinuous());      // indexed as one run of pixels below
   std::vector<std::pair<std::size_t, float>> clipped;  // few (0.9 % of IMG_1): no copy of the whole image
   const float* pixels = image.ptr<float>();
   for (std::size_t i = 0; i < image.total(); ++i)
     if (pixels[i] >= kFullScale) clipped.emplace_back(i, pixels[i]);
-  SmoothCarrierColour(image, narrow_sigma, wide_sigma);
+  SmoothColourAboutGrey(image, options);
   for (const auto& [index, value] : clipped) image.ptr<float>()[index] = value;
   ClampToCodes(image);
 }
@@ -356,6 +384,10 @@ cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRest
                           MosaicRestoreReport* report) {
   if (options.iterations < 0 || !(options.narrow_sigma > 0.0) || !(options.wide_sigma > options.narrow_sigma))
     throw Error("JPEG mosaic restoration: need iterations >= 0 and 0 < narrow sigma < wide sigma");
+  if (!std::all_of(options.grey_gains.begin(), options.grey_gains.end(),
+                   [](float g) { return std::isfinite(g) && g > 0.0f; }) ||
+      !std::isfinite(options.grey_black))
+    throw Error("JPEG mosaic restoration: grey gains must be positive and the black level finite");
   const cv::Mat& start = options.start;
   if (!start.empty()) RequireCodesCoveringBlocks(start, coefficients, "JPEG mosaic restoration: the start");
   cv::Mat image = start.empty() ? PlainDecode(coefficients) : start.clone();
@@ -364,13 +396,13 @@ cv::Mat RestoreJpegMosaic(const JpegCoefficients& coefficients, const MosaicRest
       options.iterations == 0 ? cv::Mat() : (start.empty() ? image.clone() : PlainDecode(coefficients));
   double last = 0.0;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
+    SmoothColourAboutGrey(image, options);
     const bool last_round = iteration + 1 == options.iterations;
     const double moved = ProjectOntoData(coefficients, image, last_round, 1.0f);
     if (last_round) last = moved;
   }
   if (options.iterations > 0) {
-    EndOnThePrior(image, options.narrow_sigma, options.wide_sigma);
+    EndOnThePrior(image, options);
   } else {
     ClampToCodes(image);
   }

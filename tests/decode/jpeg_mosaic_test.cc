@@ -217,6 +217,69 @@ TEST(JpegMosaic, RestorationStartsWhereItIsTold) {
             std::string::npos);
 }
 
+// A grey surface seen through a colour cast, as the sensor sees daylight: red reads 1 / 1.2 and blue 1 / 1.5 of green
+// (BGGR), over the faint lenslet mosaic's black level and micro-images. Its colour carriers are 2-3 codes at the
+// micro-images' centres, so the JPEG keeps them in some blocks and zeroes them in others.
+cv::Mat GreyUnderACast(double level) {
+  const FaintLensletMosaic flat(false, level);
+  cv::Mat codes = flat.codes.clone();
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const float gain = (y & 1) == 0 ? ((x & 1) == 0 ? 1.5f : 1.0f) : ((x & 1) == 0 ? 1.0f : 1.2f);
+      codes.at<float>(y, x) = 10.5f + (codes.at<float>(y, x) - 10.5f) / gain;
+    }
+  return codes;
+}
+
+// How far from grey the micro-images' centres of a GreyUnderACast mosaic read once the cast is taken off: |R / G - 1|
+// + |B / G - 1| of the phases' means above black.
+double DistanceFromGrey(const cv::Mat& codes) {
+  const FaintLensletMosaic flat(false, 100.0);  // its centres are the pixels at full profile
+  double sums[3] = {0, 0, 0};
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      if (flat.codes.at<float>(y, x) < 10.5f + 99.0f) continue;
+      const int colour = (y & 1) == 0 ? ((x & 1) == 0 ? 2 : 1) : ((x & 1) == 0 ? 1 : 0);
+      const double gain = colour == 2 ? 1.5 : (colour == 0 ? 1.2 : 1.0);
+      sums[colour] += gain * (codes.at<float>(y, x) - 10.5) * (colour == 1 ? 0.5 : 1.0);
+    }
+  return std::abs(sums[0] / sums[1] - 1.0) + std::abs(sums[2] / sums[1] - 1.0);
+}
+
+// Restored about the scene's grey (MosaicRestoreOptions::grey_gains, the cast's gains), the blocks whose colour the
+// JPEG zeroed come back nearer grey; about the sensor's (a flat mosaic) they stay the cast's opposite, magenta.
+// Measured from grey: truth 0.006, plain decode 0.69, restored about the sensor's grey 0.68, about the scene's 0.43
+// (the rounds start from the plain decode, whose zeroed blocks are flat, and the bins hold them near it).
+TEST(JpegMosaic, AboutTheScenesGreyColourlessBlocksRestoreNearerGrey) {
+  TempDir dir;
+  const cv::Mat truth = GreyUnderACast(16.0);
+  WriteImage(AsBytes(truth), dir / "cast.jpg", 8, {{"Compression", "jpeg:75"}});
+  const JpegCoefficients coefficients = *ReadJpegCoefficients(dir / "cast.jpg");
+  MosaicRestoreOptions plain;
+  plain.iterations = 0;
+  MosaicRestoreOptions about_the_scene;
+  about_the_scene.grey_gains = {1.5f, 1.0f, 1.0f, 1.2f};
+  about_the_scene.grey_black = 10.5f;
+  const double truth_distance = DistanceFromGrey(truth);
+  const double plain_distance = DistanceFromGrey(RestoreJpegMosaic(coefficients, plain));
+  const double sensor_distance = DistanceFromGrey(RestoreJpegMosaic(coefficients));
+  const double scene_distance = DistanceFromGrey(RestoreJpegMosaic(coefficients, about_the_scene));
+  RecordProperty("truth_distance", std::to_string(truth_distance));
+  RecordProperty("plain_distance", std::to_string(plain_distance));
+  RecordProperty("sensor_grey_distance", std::to_string(sensor_distance));
+  RecordProperty("scene_grey_distance", std::to_string(scene_distance));
+  EXPECT_LT(truth_distance, 0.02);
+  EXPECT_LT(scene_distance, 0.75 * sensor_distance);
+  // Gains of 1 are the sensor's grey: the same bytes as the default, whatever the black level.
+  MosaicRestoreOptions unit_gains;
+  unit_gains.grey_black = 10.5f;
+  EXPECT_EQ(cv::norm(RestoreJpegMosaic(coefficients, unit_gains), RestoreJpegMosaic(coefficients), cv::NORM_INF), 0.0);
+  MosaicRestoreOptions negative;
+  negative.grey_gains = {1.0f, -1.0f, 1.0f, 1.0f};
+  EXPECT_NE(ErrorOf([&] { (void)RestoreJpegMosaic(coefficients, negative); }).find("grey gains must be positive"),
+            std::string::npos);
+}
+
 TEST(JpegMosaic, ColourJpegsAreNotMosaicsAndBrokenFilesAreRefused) {
   TempDir dir;
   WriteImage(cv::Mat(16, 16, CV_8UC3, cv::Scalar(10, 200, 30)), dir / "colour.jpg", 8);

@@ -72,6 +72,14 @@ struct MosaicRestoreOptions {
   // result depends on it: e2e/jpeg_capture starts from a mosaic of other colours to find a smooth mosaic of those
   // colours near the file's bins.
   cv::Mat start;
+  // The colour the prior takes for none. By default the sensor's: every Bayer phase alike, a flat mosaic. A flat
+  // mosaic is not grey once the white balance has scaled its channels (magenta under daylight gains), and it is
+  // what a block whose colour the quantization zeroed starts from and what the prior draws smooth colour towards.
+  // With these gains (per position in the 2x2 tile, row by row: (0,0), (0,1), (1,0), (1,1)) the prior measures
+  // colour on (code - grey_black) x gain instead, so that the colour it keeps and the colour it fills in are
+  // reckoned from the scene's grey: the white-balance gains the decode will apply, per phase.
+  std::array<float, 4> grey_gains = {1.0f, 1.0f, 1.0f, 1.0f};
+  float grey_black = 0.0f;  // codes
 };
 
 struct MosaicRestoreReport {
