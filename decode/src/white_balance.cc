@@ -6,6 +6,9 @@
 #include <sstream>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
+#include "bayer_levels.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/ordered_reduction.h"
 
@@ -233,6 +236,66 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
     out.rounds = strict.rounds;
   }
   return out.gains;
+}
+
+namespace {
+
+// RGB index (0 r, 1 g, 2 b) of each phase of the tile.
+std::array<int, 4> TileColours(BayerPattern pattern) {
+  std::array<int, 4> colours{};
+  const std::array<int, 4> channels = TileChannels(pattern);  // 0 r, 1 gr, 2 gb, 3 b
+  for (std::size_t phase = 0; phase < 4; ++phase)
+    colours[phase] = channels[phase] == 0 ? 0 : (channels[phase] == 3 ? 2 : 1);
+  return colours;
+}
+
+}  // namespace
+
+std::array<float, 4> BayerPhaseGains(BayerPattern pattern, const std::array<double, 3>& gains) {
+  std::array<float, 4> phase_gains{};
+  const std::array<int, 4> colours = TileColours(pattern);
+  for (std::size_t phase = 0; phase < 4; ++phase)
+    phase_gains[phase] = static_cast<float>(gains[static_cast<std::size_t>(colours[phase])]);
+  return phase_gains;
+}
+
+std::array<double, 3> EstimateMosaicWhiteBalance(const cv::Mat& codes, BayerPattern pattern, double black,
+                                                 const std::array<double, 9>& ccm, const std::array<double, 3>& start,
+                                                 AutoWhiteBalanceReport* report) {
+  if (codes.type() != CV_32FC1 || codes.rows < 2 || codes.cols < 2)
+    throw Error("mosaic white balance: need a float Bayer mosaic of at least one tile");
+  const int rows = codes.rows / 2, cols = codes.cols / 2;
+  const std::array<int, 4> colours = TileColours(pattern);
+  cv::Mat rgb(rows, cols, CV_32FC3), brightness(rows, cols, CV_32FC1);
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < rows; ++y) {
+    const float* top = codes.ptr<float>(2 * y);
+    const float* bottom = codes.ptr<float>(2 * y + 1);
+    float* out = rgb.ptr<float>(y);
+    float* lum = brightness.ptr<float>(y);
+    for (int x = 0; x < cols; ++x) {
+      float sum[3] = {0.0f, 0.0f, 0.0f};
+      const float tile[4] = {top[2 * x], top[2 * x + 1], bottom[2 * x], bottom[2 * x + 1]};
+      for (std::size_t phase = 0; phase < 4; ++phase) sum[colours[phase]] += tile[phase] - static_cast<float>(black);
+      out[3 * x] = sum[0];
+      out[3 * x + 1] = 0.5f * sum[1];
+      out[3 * x + 2] = sum[2];
+      lum[x] = 0.25f * (sum[0] + sum[1] + sum[2]);
+    }
+  }
+  // The brightest tile within 7 tiles (an F01 micro-lens is 5 tiles across, an Illum's 7): a tile at half of it or
+  // more is well inside its micro-image, as a white image of 0.5 or more marks in the decode.
+  cv::Mat local_peak;
+  cv::dilate(brightness, local_peak, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(15, 15)));
+  cv::Mat lit(rows, cols, CV_32FC1);
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < rows; ++y) {
+    const float* b = brightness.ptr<float>(y);
+    const float* peak = local_peak.ptr<float>(y);
+    float* out = lit.ptr<float>(y);
+    for (int x = 0; x < cols; ++x) out[x] = peak[x] > 0.0f && b[x] >= 0.5f * peak[x] ? 1.0f : 0.0f;
+  }
+  return EstimateWhiteBalance(rgb, lit, ccm, start, report);
 }
 
 }  // namespace lfsp::decode

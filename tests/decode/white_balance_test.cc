@@ -8,8 +8,12 @@
 #include <array>
 #include <opencv2/core.hpp>
 
+#include "test_support.h"
+
 namespace lfsp::decode {
 namespace {
+
+using lfsp::testing::ErrorOf;
 
 const std::array<double, 9> kIdentity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
@@ -73,6 +77,39 @@ TEST(AutoWhiteBalance, ASceneWithoutGreyKeepsTheStartGains) {
   EXPECT_DOUBLE_EQ(report.start_grey_ratio, 2.0);  // every tolerance tried
   EXPECT_DOUBLE_EQ(report.settled_grey_ratio, 0.0);
   EXPECT_LT(report.grey_fraction, 0.002);
+}
+
+// The same estimate on a Bayer mosaic before any decoding: Foliage(0.05, 1.2) laid out as BGGR over a black level of
+// 10, each pixel a micro-image (bright centres, dark gaps): the lit tiles find the grey patch, the gaps do not vote.
+TEST(AutoWhiteBalance, AMosaicsGreySurfacesAreFoundBeforeDecoding) {
+  const cv::Mat rgb = Foliage(0.05, 1.2);
+  cv::Mat mosaic(400, 400, CV_32FC1);
+  for (int y = 0; y < 400; ++y)
+    for (int x = 0; x < 400; ++x) {
+      const cv::Vec3f& pixel = rgb.at<cv::Vec3f>(y / 2, x / 2);
+      const int colour = (y & 1) == 0 ? ((x & 1) == 0 ? 2 : 1) : ((x & 1) == 0 ? 1 : 0);  // BGGR
+      // Micro-images 10 tiles apart: full light within 3 tiles of their centres, a tenth of it between.
+      const int dx = (x / 2) % 10 - 5, dy = (y / 2) % 10 - 5;
+      const float light = dx * dx + dy * dy <= 9 ? 1.0f : 0.1f;
+      mosaic.at<float>(y, x) = 10.0f + 200.0f * light * pixel[colour];
+    }
+  AutoWhiteBalanceReport report;
+  const auto gains = EstimateMosaicWhiteBalance(mosaic, BayerPattern::kBGGR, 10.0, kIdentity, {1, 1, 1}, &report);
+  EXPECT_NEAR(gains[0], 1.0, 1e-4);
+  EXPECT_NEAR(gains[2], 1.2, 1e-4);
+  EXPECT_FALSE(report.kept_start);
+  EXPECT_NE(ErrorOf([] {
+              (void)EstimateMosaicWhiteBalance(cv::Mat(1, 8, CV_32FC1), BayerPattern::kBGGR, 0.0, kIdentity, {1, 1, 1});
+            }).find("need a float Bayer mosaic"),
+            std::string::npos);
+}
+
+TEST(AutoWhiteBalance, ColourGainsGoToTheirBayerPhases) {
+  const std::array<double, 3> gains = {1.25, 1.0, 1.5};
+  EXPECT_EQ(BayerPhaseGains(BayerPattern::kBGGR, gains), (std::array<float, 4>{1.5f, 1.0f, 1.0f, 1.25f}));
+  EXPECT_EQ(BayerPhaseGains(BayerPattern::kRGGB, gains), (std::array<float, 4>{1.25f, 1.0f, 1.0f, 1.5f}));
+  EXPECT_EQ(BayerPhaseGains(BayerPattern::kGRBG, gains), (std::array<float, 4>{1.0f, 1.25f, 1.5f, 1.0f}));
+  EXPECT_EQ(BayerPhaseGains(BayerPattern::kGBRG, gains), (std::array<float, 4>{1.0f, 1.5f, 1.25f, 1.0f}));
 }
 
 }  // namespace

@@ -58,4 +58,16 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
                                            const std::array<double, 9>& ccm, const std::array<double, 3>& start,
                                            AutoWhiteBalanceReport* report = nullptr);
 
+// The same estimate from a Bayer mosaic before any decoding (`codes` CV_32FC1, `black` its black level in the same
+// codes): each 2x2 tile is one RGB pixel (its two greens averaged), and the tiles at least half as bright as the
+// brightest within 7 tiles stand for the white image's well-lit pixels. Close to the estimate on the decoded views,
+// not equal. With `--jpeg-grey scene` it is what a JPEG mosaic's restoration takes for grey, and the decode's
+// automatic white balance (raw_input.cc).
+std::array<double, 3> EstimateMosaicWhiteBalance(const cv::Mat& codes, BayerPattern pattern, double black,
+                                                 const std::array<double, 9>& ccm, const std::array<double, 3>& start,
+                                                 AutoWhiteBalanceReport* report = nullptr);
+
+// Gains per position of the 2x2 tile (row by row) from gains per colour (R, G, B).
+std::array<float, 4> BayerPhaseGains(BayerPattern pattern, const std::array<double, 3>& gains);
+
 }  // namespace lfsp::decode
