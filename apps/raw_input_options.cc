@@ -24,6 +24,15 @@ void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments) {
                    "the file's DCT coefficients (colour bands otherwise); 0 = the plain JPEG decode")
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
+  command
+      ->add_option("--jpeg-grey", arguments.jpeg_grey,
+                   "Greyscale JPEG mosaics with --camera: the colour the restoration fills in where the JPEG kept "
+                   "none, and smooths towards. sensor: a flat mosaic (magenta under daylight gains). scene: the white "
+                   "balance of a short first restoration (0.2-1 s more on an F01 frame), which the automatic white "
+                   "balance then applies too; lowers the real F01 frames' colour bands but blurs fine colour and "
+                   "raises the simulated leaves capture's bands (README, Plain raw images)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sensor", "scene"}));
 }
 
 decode::PlainRawOptions ToPlainRawOptions(const PlainRawArguments& arguments) {
@@ -37,6 +46,7 @@ decode::PlainRawOptions ToPlainRawOptions(const PlainRawArguments& arguments) {
   if (arguments.black >= 0.0) options.black = arguments.black;
   if (arguments.white >= 0.0) options.white = arguments.white;
   options.jpeg_restore_iterations = arguments.jpeg_restore;
+  options.jpeg_grey = decode::JpegGreyFromString(arguments.jpeg_grey);
   return options;
 }
 

@@ -15,6 +15,7 @@ struct PlainRawArguments {
   double black = -1.0;
   double white = -1.0;
   int jpeg_restore = decode::PlainRawOptions{}.jpeg_restore_iterations;
+  std::string jpeg_grey{decode::ToString(decode::PlainRawOptions{}.jpeg_grey)};
 };
 
 void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments);

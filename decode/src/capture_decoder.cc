@@ -161,6 +161,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
     decode_options.white_balance =
         WhiteBalance{IsPlainRawImagePath(capture_path) ? WhiteBalanceMode::kAuto : WhiteBalanceMode::kCamera};
   decode_options.jpeg_block = input.jpeg_block;
+  if (!decode_options.estimated_white_balance) decode_options.estimated_white_balance = input.jpeg_scene_grey;
   // Handed over: the capture's and the white image's sensor-size buffers are freed as the decode goes.
   result.light_field =
       DecodeLenslet(std::move(input.raw), metadata, std::move(*prepared), estimate.grid, decode_options, &report);

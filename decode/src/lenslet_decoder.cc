@@ -103,6 +103,12 @@ std::array<double, 3> ResolveWhiteBalance(const DecodeOptions& options, const Ly
       gains = balance.gains;
       break;
     case WhiteBalanceMode::kAuto: {
+      if (options.estimated_white_balance) {
+        gains = options.estimated_white_balance->gains;
+        report["auto"] = options.estimated_white_balance->ToJson();
+        report["auto"]["from"] = "the JPEG restoration's estimate on the mosaic";
+        break;
+      }
       AutoWhiteBalanceReport automatic;
       gains = EstimateWhiteBalance(rgb, grey_white, CcmOf(metadata), CameraWhiteBalanceGains(metadata), &automatic);
       report["auto"] = automatic.ToJson();

@@ -31,6 +31,10 @@ struct DecodeOptions {
   // White balance of kCamera decodes (white_balance.h). None given: the camera's gains from the metadata (what
   // DecodeCaptureFile also chooses for Lytro files; plain raw images get kAuto there).
   std::optional<WhiteBalance> white_balance;
+  // An automatic white balance already estimated (a JPEG mosaic's restoration took its grey from one, raw_input.h):
+  // kAuto applies it instead of estimating again from the views, so that what the restoration took for grey reads
+  // grey in the views.
+  std::optional<AutoWhiteBalanceReport> estimated_white_balance;
   bool correct_hot_pixels = true;
   // A pixel brighter than all 8 same-colour neighbours by this much (fraction of white - black) is hot.
   double hot_pixel_margin = 0.2;

@@ -5,11 +5,20 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "lfsp/decode/lytro_metadata.h"
 #include "lfsp/decode/raw_packing.h"
+#include "lfsp/decode/white_balance.h"
 
 namespace lfsp::decode {
+
+// What a greyscale JPEG mosaic's restoration takes for colourless: the sensor's flat mosaic, or the scene's grey (the
+// white balance of a short first restoration, which the decode's automatic white balance then applies as well).
+enum class JpegGrey { kSensor, kScene };
+std::string_view ToString(JpegGrey grey);
+// "sensor" or "scene"; lfsp::Error naming the option otherwise.
+JpegGrey JpegGreyFromString(const std::string& name);
 
 // How to read a Bayer mosaic that comes in an ordinary image file, without Lytro metadata.
 struct PlainRawOptions {
@@ -19,6 +28,8 @@ struct PlainRawOptions {
   std::optional<double> white;        // overrides the white (saturation) level (raw code)
   // Greyscale JPEG mosaics: iterations of RestoreJpegMosaic (jpeg_mosaic.h); 0 = the plain JPEG decode.
   int jpeg_restore_iterations = 30;
+  // Greyscale JPEG mosaics with a camera: the colour the restoration takes for none (MosaicRestoreOptions::grey_gains).
+  JpegGrey jpeg_grey = JpegGrey::kSensor;
 };
 
 // What a decoder (and the simulator) needs to know about each Lytro camera, as the real files state it (F01:
@@ -57,8 +68,11 @@ struct RawInput {
   bool has_camera_metadata = false;  // false: a plain image without --camera (no optics, no colour)
   std::string levels;                // where the black and white levels came from, for the one-line report
   nlohmann::json jpeg_restoration;   // what RestoreJpegMosaic did (null: not a greyscale JPEG, or not asked)
-  int jpeg_block = 0;                // a mosaic stored as JPEG: its block size in pixels (8); 0 for lossless files
-  double unpack_seconds = 0.0;       // of the time to open it, unpacking the raw packing into 16-bit samples
+  // The automatic white balance a greyscale JPEG's restoration took its grey from (PlainRawOptions::jpeg_grey scene):
+  // the decode's kAuto white balance applies the same (DecodeOptions::estimated_white_balance).
+  std::optional<AutoWhiteBalanceReport> jpeg_scene_grey;
+  int jpeg_block = 0;           // a mosaic stored as JPEG: its block size in pixels (8); 0 for lossless files
+  double unpack_seconds = 0.0;  // of the time to open it, unpacking the raw packing into 16-bit samples
 };
 
 // True for the extensions of plain raw images: .png .tif .tiff .jpg .jpeg (any case).
