@@ -27,10 +27,12 @@ SimulatedJpeg& Simulated() {
   return simulated;
 }
 
-decode::CaptureDecodeResult DecodeMosaic(const fs::path& mosaic, int restore_iterations) {
+decode::CaptureDecodeResult DecodeMosaic(const fs::path& mosaic, int restore_iterations,
+                                         decode::JpegGrey grey = decode::JpegGrey::kSensor) {
   decode::CaptureDecodeOptions options;
   options.plain.camera = "f01";
   options.plain.jpeg_restore_iterations = restore_iterations;
+  options.plain.jpeg_grey = grey;
   options.decode.colour = decode::ColourMode::kLinear;
   return decode::DecodeCaptureFile(mosaic, options);
 }
@@ -62,15 +64,15 @@ void PrepareSimulated(const std::string& scene, double exposure) {
       Figures("plain JPEG", DecodeMosaic(simulated.folder / "capture_mosaic.jpg", 0), simulated.truth);
 }
 
-std::string RestoredBesideBaselines() {
+std::string RestoredBesideBaselines(decode::JpegGrey grey) {
   const SimulatedJpeg& simulated = Simulated();
-  return Figures("restored", DecodeMosaic(simulated.folder / "capture_mosaic.jpg", 30), simulated.truth) + "; " +
+  return Figures("restored", DecodeMosaic(simulated.folder / "capture_mosaic.jpg", 30, grey), simulated.truth) + "; " +
          simulated.baselines;
 }
 
 // A simulated capture's JPEG mosaic, restored, beside its lossless and plain decodes.
 BenchCase SimulatedJpegCase(const std::string& name, const std::string& input, const std::string& scene,
-                            double exposure) {
+                            double exposure, decode::JpegGrey grey = decode::JpegGrey::kSensor) {
   BenchCase c;
   c.stage = "decode";
   c.name = name;
@@ -78,7 +80,7 @@ BenchCase SimulatedJpegCase(const std::string& name, const std::string& input, c
   c.target = "bands <= lossless + 0.5; PSNR loss <= 2.5 dB";
   c.repetitions = 1;
   c.prepare = [scene, exposure] { PrepareSimulated(scene, exposure); };
-  c.run = RestoredBesideBaselines;
+  c.run = [grey] { return RestoredBesideBaselines(grey); };
   return c;
 }
 
@@ -98,19 +100,36 @@ LFSP_BENCH_CASE {
       "simulated F01 leaves (large smooth leaves in shade) 3280x3280, exposure 1.8, 8-bit JPEG q75", "leaves", 1.8);
 }
 
+// The same two captures restored about the scene's grey (`--jpeg-grey scene`).
 LFSP_BENCH_CASE {
+  return SimulatedJpegCase("jpeg-mosaic-f01-scene-grey",
+                           "as jpeg-mosaic-f01, restored about the scene's grey (--jpeg-grey scene)", "two-horses", 0.3,
+                           decode::JpegGrey::kScene);
+}
+
+LFSP_BENCH_CASE {
+  return SimulatedJpegCase("jpeg-mosaic-f01-leaves-scene-grey",
+                           "as jpeg-mosaic-f01-leaves, restored about the scene's grey (--jpeg-grey scene)", "leaves",
+                           1.8, decode::JpegGrey::kScene);
+}
+
+namespace {
+
+// The real frames, restored about the sensor's grey (the default) or the scene's.
+BenchCase RealFramesCase(const std::string& name, const std::string& input, decode::JpegGrey grey) {
   BenchCase c;
   c.stage = "decode";
-  c.name = "real-f01-jpeg-frames";
-  c.input = "IMG_1-3 of lytro_raw/tao_f01 (real F01 JPEG mosaics), default decode";
+  c.name = name;
+  c.input = input;
   c.target = "chroma bands <= 3.0 each";
   c.repetitions = 1;
   c.needs_shared_data = true;
-  c.run = [] {
+  c.run = [grey] {
     std::string text;
     for (const char* frame : {"IMG_1.jpg", "IMG_2.jpg", "IMG_3.jpg"}) {
       decode::CaptureDecodeOptions options;
       options.plain.camera = "f01";
+      options.plain.jpeg_grey = grey;
       const decode::CaptureDecodeResult result =
           decode::DecodeCaptureFile(fs::path(SharedDataDir()) / "lytro_raw" / "tao_f01" / frame, options);
       char figures[96];
@@ -122,6 +141,18 @@ LFSP_BENCH_CASE {
     return text;
   };
   return c;
+}
+
+}  // namespace
+
+LFSP_BENCH_CASE {
+  return RealFramesCase("real-f01-jpeg-frames", "IMG_1-3 of lytro_raw/tao_f01 (real F01 JPEG mosaics), default decode",
+                        decode::JpegGrey::kSensor);
+}
+
+LFSP_BENCH_CASE {
+  return RealFramesCase("real-f01-jpeg-frames-scene-grey",
+                        "IMG_1-3, restored about the scene's grey (--jpeg-grey scene)", decode::JpegGrey::kScene);
 }
 
 }  // namespace lfsp::bench
