@@ -26,6 +26,15 @@ inline std::array<int, 4> TileChannels(BayerPattern pattern) {
   return {0, 1, 2, 3};
 }
 
+// Which colour (0 r, 1 g, 2 b) sits at each phase of the tile.
+inline std::array<int, 4> TileColours(BayerPattern pattern) {
+  std::array<int, 4> colours{};
+  const std::array<int, 4> channels = TileChannels(pattern);
+  for (std::size_t phase = 0; phase < 4; ++phase)
+    colours[phase] = channels[phase] == 0 ? 0 : (channels[phase] == 3 ? 2 : 1);
+  return colours;
+}
+
 inline double Channel(const BayerValues& values, int channel) {
   switch (channel) {
     case 0:

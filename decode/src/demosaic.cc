@@ -9,6 +9,7 @@
 #include <optional>
 #include <utility>
 
+#include "bayer_levels.h"
 #include "lfsp/core/error.h"
 
 namespace lfsp::decode {
@@ -39,21 +40,6 @@ cv::Mat DemosaicOpenCv(const cv::Mat& bayer, BayerPattern pattern, bool edge_awa
   cv::Mat rgb;
   rgb16.convertTo(rgb, CV_32F, 1.0 / scale);
   return rgb;
-}
-
-// Colour (0 r, 1 g, 2 b) at each phase 2 * (y & 1) + (x & 1).
-std::array<int, 4> Tile(BayerPattern pattern) {
-  switch (pattern) {
-    case BayerPattern::kRGGB:
-      return {0, 1, 1, 2};
-    case BayerPattern::kGRBG:
-      return {1, 0, 2, 1};
-    case BayerPattern::kGBRG:
-      return {1, 2, 0, 1};
-    case BayerPattern::kBGGR:
-      return {2, 1, 1, 0};
-  }
-  return {0, 1, 1, 2};
 }
 
 // Malvar's 5x5 correction is used where the white image stays at or above this over the whole window. Beyond, its
@@ -220,7 +206,7 @@ cv::Mat InsideMicroImages(const MicroImages& micro_images, float min_white) {
 }
 
 cv::Mat DemosaicGradient(const cv::Mat& bayer, BayerPattern pattern, const MicroImages* micro_images) {
-  const std::array<int, 4> tile = Tile(pattern);
+  const std::array<int, 4> tile = TileColours(pattern);
   const int rows = bayer.rows, cols = bayer.cols;
   const cv::Mat inside = micro_images ? InsideMicroImages(*micro_images, kGradientMinWhite) : cv::Mat();
   cv::Mat rgb(rows, cols, CV_32FC3);

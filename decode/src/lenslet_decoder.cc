@@ -28,11 +28,6 @@ void CheckSize(const RawImage& image, int width, int height, const std::string& 
                 "x" + std::to_string(height));
 }
 
-// The metadata's colour matrix (row-major, applied to white-balanced sensor RGB), or the identity without one.
-std::array<double, 9> CcmOf(const LytroMetadata& metadata) {
-  return metadata.colour.ccm.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
-}
-
 // Per-phase factors applied to the white image before dividing by it. Linear: none, so the sensor's colour response
 // cancels. Camera: the inverse sensor response (normalizedResponses, or the white image's own channel means), so
 // the capture keeps its raw colour and the camera's white balance applies afterwards.
@@ -70,7 +65,7 @@ std::array<float, 4> WhiteGains(ColourMode mode, const RawImage& white, const Ly
 //           so only the colour matrix takes sensor primaries to scene-linear (sRGB-primary) RGB.
 std::array<float, 9> ColourMatrix(const LytroMetadata& metadata, ColourMode mode,
                                   const std::array<double, 3>& balance) {
-  const std::array<double, 9> ccm = CcmOf(metadata);
+  const std::array<double, 9> ccm = CameraColourMatrix(metadata);
   // LFToolbox v0.6: the F01's bias is stated one stop lower than it is applied (bias + 1); the Illum's as is.
   const double stops = metadata.modulation_exposure_bias.value_or(0.0) + (metadata.camera_model == "F01" ? 1.0 : 0.0);
   const double bias = mode == ColourMode::kCamera ? std::exp2(stops) : 1.0;
@@ -110,7 +105,8 @@ std::array<double, 3> ResolveWhiteBalance(const DecodeOptions& options, const Ly
         break;
       }
       AutoWhiteBalanceReport automatic;
-      gains = EstimateWhiteBalance(rgb, grey_white, CcmOf(metadata), CameraWhiteBalanceGains(metadata), &automatic);
+      gains = EstimateWhiteBalance(rgb, grey_white, CameraColourMatrix(metadata), CameraWhiteBalanceGains(metadata),
+                                   &automatic);
       report["auto"] = automatic.ToJson();
       break;
     }

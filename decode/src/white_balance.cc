@@ -195,6 +195,10 @@ std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata) {
   return {gain->r / green, 1.0, gain->b / green};
 }
 
+std::array<double, 9> CameraColourMatrix(const LytroMetadata& metadata) {
+  return metadata.colour.ccm.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
+}
+
 nlohmann::json AutoWhiteBalanceReport::ToJson() const {
   return {{"start_gains", start},
           {"gains", gains},
@@ -238,19 +242,6 @@ std::array<double, 3> EstimateWhiteBalance(const cv::Mat& rgb, const cv::Mat& gr
   return out.gains;
 }
 
-namespace {
-
-// RGB index (0 r, 1 g, 2 b) of each phase of the tile.
-std::array<int, 4> TileColours(BayerPattern pattern) {
-  std::array<int, 4> colours{};
-  const std::array<int, 4> channels = TileChannels(pattern);  // 0 r, 1 gr, 2 gb, 3 b
-  for (std::size_t phase = 0; phase < 4; ++phase)
-    colours[phase] = channels[phase] == 0 ? 0 : (channels[phase] == 3 ? 2 : 1);
-  return colours;
-}
-
-}  // namespace
-
 std::array<float, 4> BayerPhaseGains(BayerPattern pattern, const std::array<double, 3>& gains) {
   std::array<float, 4> phase_gains{};
   const std::array<int, 4> colours = TileColours(pattern);
@@ -266,6 +257,7 @@ std::array<double, 3> EstimateMosaicWhiteBalance(const cv::Mat& codes, BayerPatt
     throw Error("mosaic white balance: need a float Bayer mosaic of at least one tile");
   const int rows = codes.rows / 2, cols = codes.cols / 2;
   const std::array<int, 4> colours = TileColours(pattern);
+  const float black_level = static_cast<float>(black);
   cv::Mat rgb(rows, cols, CV_32FC3), brightness(rows, cols, CV_32FC1);
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < rows; ++y) {
@@ -276,7 +268,7 @@ std::array<double, 3> EstimateMosaicWhiteBalance(const cv::Mat& codes, BayerPatt
     for (int x = 0; x < cols; ++x) {
       float sum[3] = {0.0f, 0.0f, 0.0f};
       const float tile[4] = {top[2 * x], top[2 * x + 1], bottom[2 * x], bottom[2 * x + 1]};
-      for (std::size_t phase = 0; phase < 4; ++phase) sum[colours[phase]] += tile[phase] - static_cast<float>(black);
+      for (std::size_t phase = 0; phase < 4; ++phase) sum[colours[phase]] += tile[phase] - black_level;
       out[3 * x] = sum[0];
       out[3 * x + 1] = 0.5f * sum[1];
       out[3 * x + 2] = sum[2];

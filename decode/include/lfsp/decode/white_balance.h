@@ -28,6 +28,9 @@ std::string ToString(const WhiteBalance& balance);
 // The metadata's white-balance gains relative to green (image.color.whiteBalanceGain), or 1, 1, 1 without them.
 std::array<double, 3> CameraWhiteBalanceGains(const LytroMetadata& metadata);
 
+// The metadata's colour matrix (row-major, applied to white-balanced sensor RGB), or the identity without one.
+std::array<double, 9> CameraColourMatrix(const LytroMetadata& metadata);
+
 struct AutoWhiteBalanceReport {
   std::array<double, 3> start = {1.0, 1.0, 1.0};  // gains the search began from (the camera's)
   std::array<double, 3> gains = {1.0, 1.0, 1.0};  // what it settled on
