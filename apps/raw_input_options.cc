@@ -25,12 +25,14 @@ void AddPlainRawOptions(CLI::App* command, PlainRawArguments& arguments) {
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
   command
-      ->add_option("--jpeg-grey", arguments.jpeg_grey,
-                   "Greyscale JPEG mosaics with --camera: the colour the restoration fills in where the JPEG kept "
-                   "none, and smooths towards. sensor: a flat mosaic (magenta under daylight gains). scene: the white "
-                   "balance of a short first restoration (0.2-1 s more on an F01 frame), which the automatic white "
-                   "balance then applies too; lowers the real F01 frames' colour bands but blurs fine colour and "
-                   "raises the simulated leaves capture's bands (README, Plain raw images)")
+      ->add_option(
+          "--jpeg-grey", arguments.jpeg_grey,
+          "Greyscale JPEG mosaics with --camera: the colour the restoration fills in where the JPEG kept "
+          "none, and smooths towards. sensor: a flat mosaic (magenta under daylight gains). scene: the automatic "
+          "white balance of a short first restoration (0.2-1 s more on an F01 frame), whatever "
+          "--white-balance says; --white-balance auto (the default for plain images) then applies the same "
+          "gains. Lowers the real F01 frames' colour bands but blurs fine colour and raises the simulated "
+          "leaves capture's bands. No effect with --jpeg-restore 0 (README, Plain raw images)")
       ->capture_default_str()
       ->check(CLI::IsMember({"sensor", "scene"}));
 }

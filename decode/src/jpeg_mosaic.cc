@@ -289,20 +289,31 @@ void SmoothCarrierColour(cv::Mat& image, double narrow_sigma, double wide_sigma)
   }
 }
 
-// The mosaic in the space where the prior measures colour (MosaicRestoreOptions::grey_gains): (code - black) x gain
-// per Bayer phase, or back. Nothing to do for the sensor's own grey.
+// Whether the options' grey is the sensor's (every gain 1): then the mosaic is smoothed as it is, as it always was.
 bool MeasuresColourFromSensorGrey(const MosaicRestoreOptions& options) {
   return std::all_of(options.grey_gains.begin(), options.grey_gains.end(), [](float g) { return g == 1.0f; });
 }
 
-void ToGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options, bool forward) {
+// The mosaic in the space where the prior measures colour (MosaicRestoreOptions::grey_gains): (code - black) x gain
+// per Bayer phase.
+void ToGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options) {
   const float black = options.grey_black;
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < image.rows; ++y) {
     float* row = image.ptr<float>(y);
     const float* gains = options.grey_gains.data() + 2 * (y & 1);
-    for (int x = 0; x < image.cols; ++x)
-      row[x] = forward ? (row[x] - black) * gains[x & 1] : row[x] / gains[x & 1] + black;
+    for (int x = 0; x < image.cols; ++x) row[x] = (row[x] - black) * gains[x & 1];
+  }
+}
+
+// Back from ToGreyBalanced's space to codes.
+void FromGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options) {
+  const float black = options.grey_black;
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < image.rows; ++y) {
+    float* row = image.ptr<float>(y);
+    const float* gains = options.grey_gains.data() + 2 * (y & 1);
+    for (int x = 0; x < image.cols; ++x) row[x] = row[x] / gains[x & 1] + black;
   }
 }
 
@@ -312,9 +323,9 @@ void SmoothColourAboutGrey(cv::Mat& image, const MosaicRestoreOptions& options) 
     SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
     return;
   }
-  ToGreyBalanced(image, options, true);
+  ToGreyBalanced(image, options);
   SmoothCarrierColour(image, options.narrow_sigma, options.wide_sigma);
-  ToGreyBalanced(image, options, false);
+  FromGreyBalanced(image, options);
 }
 
 // Into the 0..255 a decoder clamps to, in place (a matrix expression would allocate two more sensor-size images).

@@ -64,25 +64,35 @@ PlainLevels DefaultPlainLevels(int bit_depth, std::uint16_t largest_stored, bool
 // as much (BENCHMARKS.md, forty-second session).
 constexpr int kWhiteBalanceRestoreIterations = 10;
 
-// Finds a greyscale JPEG mosaic's white balance, and sets `restore` to restore its colour about it
-// (MosaicRestoreOptions::grey_gains): the colour the prior takes for none is then what the views show as grey, not
-// the flat mosaic that the gains turn magenta. The estimate is the decode's automatic white balance, on the mosaic
-// (EstimateMosaicWhiteBalance) of a short restoration about the sensor's grey: the plain JPEG decode has lost the
-// colour it would vote with, and a restoration about the scene's grey shows the scene's average colour where the file
-// holds none, which the estimate would then take for grey (IMG_3's leaves came out blue-grey).
-AutoWhiteBalanceReport RestoreAboutTheScenesGrey(const JpegCoefficients& coefficients, MosaicRestoreOptions& restore,
-                                                 const LytroMetadata& metadata, double black) {
+// A greyscale JPEG mosaic's scene grey (`--jpeg-grey scene`): the decode's automatic white balance, estimated on the
+// mosaic (EstimateMosaicWhiteBalance) of a short restoration about the sensor's grey. Not on the plain JPEG decode,
+// which has lost the colour the estimate votes with; not on a restoration about the scene's grey, which shows the
+// scene's average colour where the file holds none, and the estimate then takes that for grey (IMG_3's leaves came out
+// blue-grey). `black`: the mosaic's black level in file codes.
+AutoWhiteBalanceReport EstimateScenesGrey(const JpegCoefficients& coefficients, const MosaicRestoreOptions& restore,
+                                          const LytroMetadata& metadata, double black) {
   MosaicRestoreOptions first = restore;
   first.iterations = std::min(restore.iterations, kWhiteBalanceRestoreIterations);
   AutoWhiteBalanceReport estimate;
-  const BayerPattern pattern = metadata.RequireRawFormat().mosaic;
-  const std::array<double, 3> gains =
-      EstimateMosaicWhiteBalance(RestoreJpegMosaic(coefficients, first), pattern, black,
-                                 metadata.colour.ccm.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}),
-                                 CameraWhiteBalanceGains(metadata), &estimate);
-  restore.grey_gains = BayerPhaseGains(pattern, gains);
-  restore.grey_black = static_cast<float>(black);
+  (void)EstimateMosaicWhiteBalance(RestoreJpegMosaic(coefficients, first), metadata.RequireRawFormat().mosaic, black,
+                                   CameraColourMatrix(metadata), CameraWhiteBalanceGains(metadata), &estimate);
   return estimate;
+}
+
+// The levels of a plain raw image, in file codes: the ones given, else DefaultPlainLevels; lfsp::Error naming the
+// file when they are out of range.
+PlainLevels ChosenPlainLevels(const std::string& name, int bit_depth, std::uint16_t largest_stored, bool has_camera,
+                              const RawFormat& camera, const PlainRawOptions& options) {
+  PlainLevels levels = DefaultPlainLevels(bit_depth, largest_stored, has_camera, camera);
+  if (options.black || options.white) levels.why = "given levels";
+  levels.black = options.black.value_or(levels.black);
+  levels.white = options.white.value_or(levels.white);
+  const double full_scale = bit_depth == 8 ? 255.0 : 65535.0;
+  if (!(levels.black >= 0.0 && levels.white > levels.black && levels.white <= full_scale))
+    throw Error(name + ": levels black " + std::to_string(levels.black) + " / white " + std::to_string(levels.white) +
+                " out of range for a " + std::to_string(bit_depth) +
+                "-bit image (need 0 <= black < white <= " + std::to_string(static_cast<int>(full_scale)) + ")");
+  return levels;
 }
 
 }  // namespace
@@ -208,17 +218,20 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
   const double full_scale = image.bit_depth == 8 ? 255.0 : 65535.0;
   double code_scale = 1.0;  // stored raw code per file code
   cv::Mat codes;            // file codes, CV_32FC1
+  if (options.jpeg_grey == JpegGrey::kScene && IsJpegPath(path) && !input.has_camera_metadata)
+    throw Error(name + ": " + OptionName("jpeg_grey") + " scene needs " + OptionName("camera") +
+                " (its colour matrix and white balance)");
   if (IsJpegPath(path) && image.bit_depth == 8 && options.jpeg_restore_iterations > 0) {
     if (const std::optional<JpegCoefficients> coefficients = ReadJpegCoefficients(path)) {
       MosaicRestoreOptions restore;
       restore.iterations = options.jpeg_restore_iterations;
       nlohmann::json grey = "the sensor's: a flat mosaic";
-      if (options.jpeg_grey == JpegGrey::kScene && !input.has_camera_metadata)
-        throw Error(name + ": " + OptionName("jpeg_grey") + " scene needs " + OptionName("camera") +
-                    " (its colour matrix and white balance)");
       if (options.jpeg_grey == JpegGrey::kScene) {
-        const double black = options.black.value_or(DefaultPlainLevels(image.bit_depth, 255, true, format).black);
-        input.jpeg_scene_grey = RestoreAboutTheScenesGrey(*coefficients, restore, input.metadata, black);
+        // An 8-bit file's levels do not depend on its codes: the largest stored code does not matter here.
+        const double black = ChosenPlainLevels(name, 8, 255, true, format, options).black;
+        input.jpeg_scene_grey = EstimateScenesGrey(*coefficients, restore, input.metadata, black);
+        restore.grey_gains = BayerPhaseGains(format.mosaic, input.jpeg_scene_grey->gains);
+        restore.grey_black = static_cast<float>(black);
         grey = {{"from", "the scene's: the automatic white balance of a short first restoration, on the mosaic"},
                 {"gains", input.jpeg_scene_grey->gains},
                 {"black", black}};
@@ -250,19 +263,11 @@ RawInput ReadPlainRawImage(const std::filesystem::path& path, const PlainRawOpti
     }
   }
 
-  const PlainLevels levels = DefaultPlainLevels(image.bit_depth, largest, input.has_camera_metadata, format);
-  input.levels = levels.why;
-  double black = levels.black, white = levels.white;
-  if (options.black || options.white) input.levels = "given levels";
-  black = options.black.value_or(black);
-  white = options.white.value_or(white);
-  if (!(black >= 0.0 && white > black && white <= full_scale))
-    throw Error(name + ": levels black " + std::to_string(black) + " / white " + std::to_string(white) +
-                " out of range for a " + std::to_string(image.bit_depth) +
-                "-bit image (need 0 <= black < white <= " + std::to_string(static_cast<int>(full_scale)) + ")");
-  format.black = Uniform(black * code_scale);
-  format.white = Uniform(white * code_scale);
-  input.levels += fmt::format(": black {:g}, white {:g}", black, white);
+  const PlainLevels levels =
+      ChosenPlainLevels(name, image.bit_depth, largest, input.has_camera_metadata, format, options);
+  format.black = Uniform(levels.black * code_scale);
+  format.white = Uniform(levels.white * code_scale);
+  input.levels = levels.why + fmt::format(": black {:g}, white {:g}", levels.black, levels.white);
   return input;
 }
 

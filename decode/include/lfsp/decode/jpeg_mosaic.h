@@ -77,7 +77,10 @@ struct MosaicRestoreOptions {
   // what a block whose colour the quantization zeroed starts from and what the prior draws smooth colour towards.
   // With these gains (per position in the 2x2 tile, row by row: (0,0), (0,1), (1,0), (1,1)) the prior measures
   // colour on (code - grey_black) x gain instead, so that the colour it keeps and the colour it fills in are
-  // reckoned from the scene's grey: the white-balance gains the decode will apply, per phase.
+  // reckoned from a grey under those gains (`--jpeg-grey scene` passes the scene's: its automatic white balance, per
+  // phase; raw_input.cc). The black level is taken off first so that the pedestal is not measured as colour: the
+  // prior keeps a constant per phase, but its filters reflect at the border, and the wide scale carries that inwards
+  // over the rounds.
   std::array<float, 4> grey_gains = {1.0f, 1.0f, 1.0f, 1.0f};
   float grey_black = 0.0f;  // codes
 };
