@@ -282,10 +282,41 @@ TEST(RealRawDecode, F01FramesRestoredAboutTheScenesGreyHaveNoColourBands) {
                    std::to_string(means[0]) + " " + std::to_string(means[1]) + " " + std::to_string(means[2]));
     EXPECT_LT(means[2], std::max(means[0], means[1]));
     EXPECT_LT(*std::max_element(means.begin(), means.end()) / *std::min_element(means.begin(), means.end()), 1.6);
+    if (std::string(frame) == "IMG_2.jpg") {
+      EXPECT_LT(means[2], means[0]);  // the shoe's blue under its red (level by default)
+    }
     if (std::string(frame) == "IMG_3.jpg") {
       EXPECT_GT(means[1], std::max(means[0], means[2]));  // green leaves
     }
   }
+}
+
+// Without the shared data: a small F01-like JPEG mosaic read with `--jpeg-grey scene` records the estimate it restored
+// about, the gains it applied per phase are those of the summary, and the default records the sensor's grey.
+TEST(RealRawDecode, AJpegMosaicRestoredAboutTheScenesGreyRecordsIt) {
+  TempDir dir;
+  cv::Mat mosaic(128, 128, CV_8UC1);
+  for (int y = 0; y < mosaic.rows; ++y)
+    for (int x = 0; x < mosaic.cols; ++x) {
+      // BGGR: a grey surface seen with red as green and blue at 1 / 1.4 of it (a light near the F01's, whose gains
+      // the search starts from: the colour matrix makes a far one look too coloured to be grey), lit from 30 to
+      // 100 % across (the estimate leaves out the brightest tiles as clipped).
+      const double colour = (y & 1) == 0 ? ((x & 1) == 0 ? 1.0 / 1.4 : 1.0) : 1.0;
+      mosaic.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(10.5 + 150.0 * (0.3 + 0.7 * x / 127.0) * colour);
+    }
+  WriteImage(mosaic, dir / "mosaic.jpg", 8, {{"Compression", "jpeg:95"}});
+  PlainRawOptions options;
+  options.camera = "f01";
+  options.jpeg_grey = JpegGrey::kScene;
+  const RawInput scene = OpenRawInput(dir / "mosaic.jpg", options);
+  ASSERT_TRUE(scene.jpeg_scene_grey);
+  EXPECT_EQ(scene.jpeg_restoration["grey"]["gains"], nlohmann::json(scene.jpeg_scene_grey->gains));
+  EXPECT_NEAR(scene.jpeg_scene_grey->gains[0], 1.0, 0.05);
+  EXPECT_NEAR(scene.jpeg_scene_grey->gains[2], 1.4, 0.05);
+  options.jpeg_grey = JpegGrey::kSensor;
+  const RawInput sensor = OpenRawInput(dir / "mosaic.jpg", options);
+  EXPECT_FALSE(sensor.jpeg_scene_grey);
+  EXPECT_EQ(sensor.jpeg_restoration["grey"], "the sensor's: a flat mosaic");
 }
 
 TEST(RealRawDecode, TheScenesGreyNeedsACamera) {

@@ -80,7 +80,8 @@ TEST(AutoWhiteBalance, ASceneWithoutGreyKeepsTheStartGains) {
 }
 
 // The same estimate on a Bayer mosaic before any decoding: Foliage(0.05, 1.2) laid out as BGGR over a black level of
-// 10, each pixel a micro-image (bright centres, dark gaps): the lit tiles find the grey patch, the gaps do not vote.
+// 10, in micro-images 10 tiles apart whose dark gaps are near grey under other gains (red 1.2 times green, blue as
+// the patch's): the lit tiles find the grey patch; were the gaps to vote, the red gain would fall towards 1 / 1.2.
 TEST(AutoWhiteBalance, AMosaicsGreySurfacesAreFoundBeforeDecoding) {
   const cv::Mat rgb = Foliage(0.05, 1.2);
   cv::Mat mosaic(400, 400, CV_32FC1);
@@ -88,10 +89,10 @@ TEST(AutoWhiteBalance, AMosaicsGreySurfacesAreFoundBeforeDecoding) {
     for (int x = 0; x < 400; ++x) {
       const cv::Vec3f& pixel = rgb.at<cv::Vec3f>(y / 2, x / 2);
       const int colour = (y & 1) == 0 ? ((x & 1) == 0 ? 2 : 1) : ((x & 1) == 0 ? 1 : 0);  // BGGR
-      // Micro-images 10 tiles apart: full light within 3 tiles of their centres, a tenth of it between.
       const int dx = (x / 2) % 10 - 5, dy = (y / 2) % 10 - 5;
-      const float light = dx * dx + dy * dy <= 9 ? 1.0f : 0.1f;
-      mosaic.at<float>(y, x) = 10.0f + 200.0f * light * pixel[colour];
+      const bool lit = dx * dx + dy * dy <= 9;
+      const float gap[3] = {0.12f, 0.1f, 0.1f / 1.2f};
+      mosaic.at<float>(y, x) = 10.0f + 200.0f * (lit ? pixel[colour] : gap[colour]);
     }
   AutoWhiteBalanceReport report;
   const auto gains = EstimateMosaicWhiteBalance(mosaic, BayerPattern::kBGGR, 10.0, kIdentity, {1, 1, 1}, &report);
