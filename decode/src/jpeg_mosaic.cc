@@ -18,6 +18,7 @@
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
 
+#include "bayer_levels.h"
 #include "lfsp/core/banded_filter.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
@@ -301,8 +302,7 @@ void ToGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options) {
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < image.rows; ++y) {
     float* row = image.ptr<float>(y);
-    const float* gains = options.grey_gains.data() + 2 * (y & 1);
-    for (int x = 0; x < image.cols; ++x) row[x] = (row[x] - black) * gains[x & 1];
+    for (int x = 0; x < image.cols; ++x) row[x] = (row[x] - black) * options.grey_gains[BayerPhase(x, y)];
   }
 }
 
@@ -312,8 +312,7 @@ void FromGreyBalanced(cv::Mat& image, const MosaicRestoreOptions& options) {
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < image.rows; ++y) {
     float* row = image.ptr<float>(y);
-    const float* gains = options.grey_gains.data() + 2 * (y & 1);
-    for (int x = 0; x < image.cols; ++x) row[x] = row[x] / gains[x & 1] + black;
+    for (int x = 0; x < image.cols; ++x) row[x] = row[x] / options.grey_gains[BayerPhase(x, y)] + black;
   }
 }
 
