@@ -156,6 +156,14 @@ std::array<double, 3> CentreMeans(const LightField& light_field, double share = 
   return means;
 }
 
+// A real F01 frame of lytro_raw/tao_f01 decoded as `lfsp decode FRAME --camera f01 [--jpeg-grey scene]` would.
+CaptureDecodeResult DecodeRealFrame(const fs::path& data, const std::string& frame, JpegGrey grey) {
+  CaptureDecodeOptions options;
+  options.plain.camera = "f01";
+  options.plain.jpeg_grey = grey;
+  return DecodeCaptureFile(data / "lytro_raw" / "tao_f01" / frame, options);
+}
+
 // Issue 49's colour rules on a real frame's centre-view means (R, G, B): blue not above the larger of red and green
 // by more than `blue_margin` (a share), the means within 1.6x of each other, IMG_3's leaves green. The means are
 // recorded as `property`.
@@ -177,9 +185,7 @@ TEST(RealRawDecode, F01FramesDecodeWithoutBandsOrColourCast) {
   LFSP_REQUIRE_SHARED_DATA(data);
   for (const char* frame : {"IMG_1.jpg", "IMG_2.jpg", "IMG_3.jpg"}) {
     SCOPED_TRACE(frame);
-    CaptureDecodeOptions options;
-    options.plain.camera = "f01";
-    const CaptureDecodeResult result = DecodeCaptureFile(data / "lytro_raw" / "tao_f01" / frame, options);
+    const CaptureDecodeResult result = DecodeRealFrame(data, frame, JpegGrey::kSensor);
     const LightFieldShape& shape = result.light_field.shape();
     EXPECT_EQ(shape.nu, 9);
     EXPECT_GE(shape.width, 370);
@@ -272,10 +278,7 @@ TEST(RealRawDecode, F01FramesRestoredAboutTheScenesGreyHaveNoColourBands) {
   LFSP_REQUIRE_SHARED_DATA(data);
   for (const char* frame : {"IMG_1.jpg", "IMG_2.jpg", "IMG_3.jpg"}) {
     SCOPED_TRACE(frame);
-    CaptureDecodeOptions options;
-    options.plain.camera = "f01";
-    options.plain.jpeg_grey = JpegGrey::kScene;
-    const CaptureDecodeResult result = DecodeCaptureFile(data / "lytro_raw" / "tao_f01" / frame, options);
+    const CaptureDecodeResult result = DecodeRealFrame(data, frame, JpegGrey::kScene);
     const nlohmann::json& grey = result.summary["jpeg_restoration"]["grey"];
     const nlohmann::json& balance = result.summary["decode"]["white_balance"];
     EXPECT_EQ(balance["mode"], "auto");
