@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "Only print errors; no progress display");
   app.add_option("--max-memory", max_memory_gib,
                  "Trust sizes declared in input files up to GIB gibibytes of samples (default: at most 16 GiB, and "
-                 "no more than 512x the file's own size)")
+                 "no more than 64 MiB + 512x the file's own size)")
       ->check(CLI::Range(0.001, 1.0e6));
   app.add_option("--views-pattern", lfsp::cli::GlobalLoadOptions().views_pattern,
                  "How the files of a views folder are named, e.g. '{row}_{col}.png' or 'view_{row}_{col}.png' "

@@ -25,8 +25,8 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
       ->add_option(
           "--occlusion-radius", method.occlusion.radius,
           "Pixels within this distance of a centre-view edge use the better half of the views; 0 = "
-          "automatic (the largest shift between the centre and an outer view over the disparity range, at most 12 px, "
-          "plus twice the presmoothing)")
+          "automatic (the largest shift between the centre and an outer view over the disparity range, kept within "
+          "2-12 px, plus twice the presmoothing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command

@@ -76,8 +76,11 @@ void AddConvertCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingPath);
   command
-      ->add_option("output", options->out,
-                   "OUT.h5 a bundle, OUT.png an ESLF image, OUT.mat LFToolbox's layout, anything else a views folder")
+      ->add_option(
+          "output", options->out,
+          "OUT.h5 a bundle, OUT.png an ESLF image, OUT.mat LFToolbox's layout, OUT.gif / OUT.mp4 an animation of "
+          "the views, OUT.pfm the disparity map the input carries, anything else a views folder (names "
+          "ending in another file type's extension, such as .jpg, are refused)")
       ->required();
   command->add_option("--bit-depth", options->bit_depth, "Bits per sample of PNG/TIFF outputs: 8 or 16 (default: 16)");
   command->add_option("--view-format", options->view_format,

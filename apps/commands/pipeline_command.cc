@@ -40,9 +40,10 @@ void AddPipelineCommand(CLI::App& app) {
   AddPlainRawOptions(command, *plain);
   auto dmin = std::make_shared<float>(0.0f);
   auto dmax = std::make_shared<float>(0.0f);
-  CLI::Option* dmin_option = command->add_option("--dmin", *dmin,
-                                                 "Smallest disparity to consider (px/view); "
-                                                 "default: the input's metadata, else its ground truth, else -2");
+  CLI::Option* dmin_option = command->add_option(
+      "--dmin", *dmin,
+      "Smallest disparity to consider (px/view); "
+      "default: the input's metadata, else its ground truth (padded), else estimated from the views");
   CLI::Option* dmax_option = command->add_option("--dmax", *dmax, "Largest disparity to consider (px/view)");
   dmin_option->needs(dmax_option);
   dmax_option->needs(dmin_option);

@@ -85,7 +85,9 @@ void AddRectifyCommand(CLI::App& app) {
   command->add_option("light_field", options->input, "Decoded light field (.h5 bundle or views folder)")
       ->required()
       ->check(CLI::ExistingPath);
-  command->add_option("--calibration", options->calibration, "Calibration JSON from `lfsp calibrate`")
+  command
+      ->add_option("--calibration", options->calibration,
+                   "Calibration JSON from `lfsp calibrate`, or LFToolbox's CalInfo.json")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Output: a .h5 bundle, or a views folder")->required();
