@@ -16,7 +16,7 @@ def test_example_decodes_segments_scores_and_draws(tmp_path):
     assert result.returncode == 0, result.stderr
     badpix = float(re.search(r"BadPix 0.07 ([0-9.]+) %", result.stdout).group(1))
     recall = float(re.search(r"boundary recall ([0-9.]+)", result.stdout).group(1))
-    assert 0.0 <= badpix < 100.0
+    assert badpix < 25.0  # 16.6 % measured (forty-third session); an early depth read 51.7 % (BENCHMARKS.md)
     assert recall > 0.5  # superpixel boundaries follow the scene's objects
     with open(figure, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"

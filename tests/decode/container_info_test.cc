@@ -50,7 +50,6 @@ TEST(ContainerInfoReal, DescribesTheFourRealContainers) {
     EXPECT_EQ(d["section_counts"]["total"], e.sections);
     EXPECT_EQ(d["section_counts"]["LFM"], 1);
     ASSERT_EQ(d["sections"].size(), e.sections);
-    for (const auto& s : d["sections"]) EXPECT_TRUE(s["sha1_verified"].get<bool>());
     const std::string model = d.contains("metadata") ? d["metadata"]["camera"]["model"].get<std::string>()
                                                      : d["camera_inferred"]["model"].get<std::string>();
     EXPECT_EQ(model, e.model);

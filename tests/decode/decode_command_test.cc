@@ -22,7 +22,7 @@ using testing::TempDir;
 fs::path Sample(const std::string& name) { return SourceDir() / "samples" / name; }
 
 TEST(DecodeCommand, DecodesTheBundledIllumSampleWithItsWhiteImage) {
-  if (!fs::exists(Sample("mini-illum/capture.LFR"))) GTEST_SKIP() << "samples/mini-illum not present";
+  ASSERT_TRUE(fs::exists(Sample("mini-illum/capture.LFR"))) << testing::kMissingSample;
   TempDir dir;
   const fs::path out = dir / "decoded.h5";
   const auto result =
@@ -75,7 +75,7 @@ TEST(DecodeCommand, DecodesTheBundledIllumSampleWithItsWhiteImage) {
 }
 
 TEST(DecodeCommand, ViewsFolderOutputInCameraColour) {
-  if (!fs::exists(Sample("mini-f01/capture.lfp"))) GTEST_SKIP() << "samples/mini-f01 not present";
+  ASSERT_TRUE(fs::exists(Sample("mini-f01/capture.lfp"))) << testing::kMissingSample;
   TempDir dir;
   const fs::path out = dir / "views";
   const auto result = RunLfsp({"decode", Sample("mini-f01/capture.lfp").string(), "--out", out.string()});
@@ -100,7 +100,7 @@ TEST(DecodeCommand, ContainerWithoutRawImageFailsCleanly) {
 // Issue 13: without a matching white image the decode warns and estimates one from the capture itself; a white-image
 // folder that does not exist is still an error.
 TEST(DecodeCommand, NoMatchingWhiteImageFallsBackToTheCaptureWithAWarning) {
-  if (!fs::exists(Sample("mini-illum/capture.LFR"))) GTEST_SKIP() << "samples not present";
+  ASSERT_TRUE(fs::exists(Sample("mini-illum/capture.LFR"))) << testing::kMissingSample;
   TempDir dir;
   const fs::path out = dir / "out.h5";
   // The F01 sample's white images belong to another camera (serial): none may be chosen.
@@ -133,7 +133,7 @@ TEST(DecodeCommand, NoMatchingWhiteImageFallsBackToTheCaptureWithAWarning) {
 }
 
 TEST(DecodeCommand, BadOptionsExit2) {
-  if (!fs::exists(Sample("mini-illum/capture.LFR"))) GTEST_SKIP() << "samples not present";
+  ASSERT_TRUE(fs::exists(Sample("mini-illum/capture.LFR"))) << testing::kMissingSample;
   TempDir dir;
   const auto result = RunLfsp(
       {"decode", Sample("mini-illum/capture.LFR").string(), "--demosaic", "magic", "--out", (dir / "out.h5").string()});

@@ -74,7 +74,7 @@ TEST(GivenGrid, RealLfToolboxCalInfoIsTheSameLattice) {
 // fitted grid gives (the fit is within 0.08 px of the truth); the same model read as if it were 0-based does not.
 TEST(GivenGrid, DecodeWithAnLfToolboxModelMatchesTheFittedGrid) {
   const fs::path capture = SourceDir() / "samples" / "mini-f01" / "capture.lfp";
-  if (!fs::exists(capture)) GTEST_SKIP() << "samples not present";
+  ASSERT_TRUE(fs::exists(capture)) << testing::kMissingSample;
   TempDir dir;
   const nlohmann::json truth =
       ReadJson(SourceDir() / "samples" / "mini-f01" / "ground_truth" / "lenslet_geometry.json");
@@ -112,7 +112,7 @@ TEST(GivenGrid, DecodeWithAnLfToolboxModelMatchesTheFittedGrid) {
 // lfsp's own grid file round-trips: what `lfsp grid` writes, `lfsp decode --grid` uses as it is.
 TEST(GivenGrid, LfspGridFileIsUsedAsItIs) {
   const fs::path capture = SourceDir() / "samples" / "mini-f01" / "capture.lfp";
-  if (!fs::exists(capture)) GTEST_SKIP() << "samples not present";
+  ASSERT_TRUE(fs::exists(capture)) << testing::kMissingSample;
   TempDir dir;
   auto result = RunLfsp({"grid", capture.string(), "--out", (dir / "grid.json").string()});
   ASSERT_EQ(result.exit_status, 0) << result.err;
@@ -129,7 +129,7 @@ TEST(GivenGrid, LfspGridFileIsUsedAsItIs) {
 // Bad grid files: one line naming the file and the problem, exit status 2, nothing written.
 TEST(GivenGrid, BadGridFilesExit2AndWriteNothing) {
   const fs::path capture = SourceDir() / "samples" / "mini-f01" / "capture.lfp";
-  if (!fs::exists(capture)) GTEST_SKIP() << "samples not present";
+  ASSERT_TRUE(fs::exists(capture)) << testing::kMissingSample;
   TempDir dir;
   const nlohmann::json truth =
       ReadJson(SourceDir() / "samples" / "mini-f01" / "ground_truth" / "lenslet_geometry.json");

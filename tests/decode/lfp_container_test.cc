@@ -70,10 +70,9 @@ TEST(LfpContainerReal, SectionCountsShaAndExactReserialisation) {
     EXPECT_EQ(c.CountOf(SectionKind::kMetadata), real.lfm);
     EXPECT_EQ(c.sections.front().kind, SectionKind::kMetadata);  // these four put the LFM first
     EXPECT_EQ(c.sections.front().sha1.substr(0, 17), real.toc_sha1);
-    for (const LfpSection& s : c.sections) {
-      EXPECT_EQ(s.sha1, Sha1Reference(s.payload));  // independently of the reader's own check
-      EXPECT_EQ(s.offset % 16, 0u);
-    }
+    // Every section's SHA-1 was checked by the reader (it throws on a mismatch: Sha1MismatchNamesSectionAndOffset;
+    // its hash: Sha1.KnownVector); the first one's prefix above comes from a separate walker of the files.
+    for (const LfpSection& s : c.sections) EXPECT_EQ(s.offset % 16, 0u);
     // The writer reproduces the real byte layout exactly (headers, lengths, padding).
     EXPECT_TRUE(SerializeLfpContainer(c) == ReadFileBytes(path));
   }

@@ -40,9 +40,10 @@ testing::ShiftLightField* ShiftSceneTest::scene_ = nullptr;
 TEST_F(ShiftSceneTest, FullMethodRecoversPlaneAndOccluder) {
   const DepthEvaluation e = EstimateAndScore(scene_->light_field, scene_->disparity, true, true);
   // Measured BadPix 0.07 0.19 %, MSE x100 0.019 (9x9x96x96, 8 px frame); the bounds leave room for harmless
-  // changes, not for a broken method (plain winner-take-all without occlusion handling: ~15 % / ~60).
-  EXPECT_LT(e.all.badpix_007, 1.0);
-  EXPECT_LT(e.all.mse_x100, 0.5);
+  // changes (about 3x and 5x), not for a real regression (plain winner-take-all without occlusion handling: ~15 %
+  // / ~60).
+  EXPECT_LT(e.all.badpix_007, 0.6);
+  EXPECT_LT(e.all.mse_x100, 0.1);
 }
 
 TEST_F(ShiftSceneTest, OcclusionHandlingHelpsNearTheOccluderEdge) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -80,12 +81,35 @@ TEST(Kill, PipelineKilledAtSeveralPointsThenRerun) {
 TEST(Kill, DecodeKilledThenRerun) {
   TempDir temp;
   const fs::path sample = testing::SourceDir() / "samples" / "mini-illum" / "capture.LFR";
-  const std::vector<std::string> arguments = {"decode", sample.string(), "--out", (temp / "decoded.h5").string(), "-q"};
-  for (const double seconds : {0.1, 0.3, 0.5}) RunLfspKilledAfter(arguments, seconds);
+  const fs::path out = temp / "decoded.h5";
+  const std::vector<std::string> arguments = {"decode", sample.string(), "--out", out.string(), "-q"};
+  // Timed on another output, so that the kills below land at fractions of a whole run on a fast machine and a slow
+  // one (a fixed 0.1-0.5 s could all come after a fast run had finished, and the test would kill nothing).
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(RunLfsp({"decode", sample.string(), "--out", (temp / "timing.h5").string(), "-q"}).exit_status, 0);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fs::remove(temp / "timing.h5");
+
+  int killed = 0;
+  for (const double fraction : {0.2, 0.4, 0.6}) {
+    SCOPED_TRACE(fraction);
+    if (!RunLfspKilledAfter(arguments, fraction * wall)) break;  // finished: the reruns below take over
+    ++killed;
+    EXPECT_FALSE(fs::exists(out)) << "a killed decode must not leave a file under the output's name";
+  }
   ASSERT_EQ(RunLfsp(arguments).exit_status, 0);
-  EXPECT_TRUE(fs::exists(temp / "decoded.h5"));
+  const std::string complete = ReadBytes(out);
+  for (const double fraction : {0.2, 0.5}) {
+    SCOPED_TRACE(fraction);
+    if (RunLfspKilledAfter(arguments, fraction * wall)) {
+      ++killed;
+      EXPECT_EQ(ReadBytes(out), complete) << "a killed rerun must leave the previous output as it was";
+    }
+  }
+  EXPECT_GE(killed, 2) << "the decodes finished before they could be killed";
+  EXPECT_EQ(RunLfsp({"info", out.string()}).exit_status, 0);
+  ASSERT_EQ(RunLfsp(arguments).exit_status, 0);
   EXPECT_TRUE(Temporaries(temp.path()).empty()) << Temporaries(temp.path()).front();
-  EXPECT_EQ(RunLfsp({"info", (temp / "decoded.h5").string()}).exit_status, 0);
 }
 
 }  // namespace

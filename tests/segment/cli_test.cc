@@ -65,7 +65,9 @@ TEST(SegmentCli, SegmentsAndEvaluatesASimulatedScene) {
   EXPECT_LT(lfsp["undersegmentation_error"].get<double>(), 0.05);
   EXPECT_GT(lfsp["achievable_segmentation_accuracy"].get<double>(), 0.95);
   EXPECT_LT(lfsp["self_similarity"].get<double>(), 2.0);
-  EXPECT_GE(lfsp["labels_per_pixel"].get<double>(), 1.0);
+  RecordProperty("labels_per_pixel", std::to_string(lfsp["labels_per_pixel"].get<double>()));
+  // 1 for a perfectly view-consistent segmentation (metrics.h); 1.020 measured.
+  EXPECT_LT(lfsp["labels_per_pixel"].get<double>(), 1.1);
   for (const char* name :
        {"slic_per_view", "lsc_per_view", "slic_supervoxels_row_first", "slic_supervoxels_column_first"}) {
     ASSERT_TRUE(report["baselines"].contains(name)) << name;

@@ -20,6 +20,8 @@ std::optional<std::filesystem::path> SharedDataDir();
 
 // The repository root (LFSP_SOURCE_DIR), for bundled samples.
 std::filesystem::path SourceDir();
+// What a test says when a bundled sample is missing: they are committed, so SourceDir() is wrong, not the test.
+inline constexpr const char* kMissingSample = "a bundled sample (samples/) is missing: is LFSP_SOURCE_DIR right?";
 
 // A fresh empty folder under the system temp dir, removed when the object dies.
 class TempDir {
