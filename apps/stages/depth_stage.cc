@@ -29,6 +29,7 @@ DepthStageResult RunDepthStage(const Bundle& bundle, const depth::DepthOptions& 
   summary["parameters"] = depth::ToJson(options);
   summary["occlusion_candidates"] = estimate.occlusion_candidates;
   summary["thin_structure_refusals"] = estimate.thin_structure_refusals;
+  summary["mixed_edge_moves"] = estimate.mixed_edge_moves;
   const nlohmann::ordered_json choices = depth::AutomaticChoicesToJson(estimate);
   for (const auto& [key, value] : choices.items()) summary[key] = value;
   // How strongly the lens lattice shows in the maps of a lenslet decode (issue 49; about 1 is none), when they are

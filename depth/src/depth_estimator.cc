@@ -25,7 +25,8 @@ bool AdmitsPartialPatches(const DepthOptions& options) {
 std::size_t StepsOf(const DepthOptions& options) {
   return 4 + (AdmitsPartialPatches(options) ? 1 : 0) + (options.aggregation_radius > 0 ? 1 : 0) +
          (options.regularise ? 2 : 0) + (options.regularise && options.plane_fit ? 1 : 0) +
-         (options.regularise && options.textureless_fill.smoothness > 0.0f ? 1 : 0);
+         (options.regularise && options.textureless_fill.smoothness > 0.0f ? 1 : 0) +
+         (options.regularise && options.mixed_edges.max_share > 0.0f ? 1 : 0);
 }
 
 }  // namespace
@@ -163,6 +164,11 @@ DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& opt
     if (options.textureless_fill.smoothness > 0.0f) {
       FillTexturelessDisparity(estimate.disparity, centre, options.textureless_fill);
       lap("textureless_fill");
+    }
+    if (options.mixed_edges.max_share > 0.0f) {
+      // The unsmoothed centre: a mixed pixel's colour is what it is before the presmoothing mixes it further.
+      result.mixed_edge_moves = ReassignMixedEdgePixels(estimate.disparity, raw_centre, options.mixed_edges);
+      lap("mixed_edges");
     }
   }
   LowerConfidenceNearDepthEdges(estimate.confidence, estimate.disparity);

@@ -68,6 +68,12 @@ nlohmann::json ToJson(const DepthOptions& options) {
   json["textureless_fill"] = {{"smoothness", options.textureless_fill.smoothness},
                               {"texture_scale", options.textureless_fill.texture_scale},
                               {"jump", options.textureless_fill.jump}};
+  json["mixed_edges"] = {{"max_share", options.mixed_edges.max_share},
+                         {"jump", options.mixed_edges.jump},
+                         {"depth", options.mixed_edges.depth},
+                         {"rgb_separation", options.mixed_edges.rgb_separation},
+                         {"chroma_separation", options.mixed_edges.chroma_separation},
+                         {"rounds", options.mixed_edges.rounds}};
   json["presmooth_sigma"] = options.presmooth_sigma;
   json["excluded_ring"] = options.cost.excluded_ring;
   json["detail_weight"] = options.cost.detail_weight;

@@ -9,6 +9,7 @@
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/metadata.h"
 #include "lfsp/depth/cost_volume.h"
+#include "lfsp/depth/mixed_edge_pixels.h"
 #include "lfsp/depth/occlusion.h"
 #include "lfsp/depth/occlusion_alternatives.h"
 #include "lfsp/depth/plane_fit.h"
@@ -42,6 +43,9 @@ struct DepthOptions {
   MedianOptions median;  // the weighted-median refinement (refinement.h)
   // After the median: textureless pixels interpolated from the textured ones around them (textureless_fill.h).
   TexturelessFillOptions textureless_fill;
+  // Last: the pixels along occlusion edges whose colour is mostly the farther surface's go to it
+  // (mixed_edge_pixels.h).
+  MixedEdgeOptions mixed_edges;
 };
 
 struct DepthResult {
@@ -51,6 +55,7 @@ struct DepthResult {
   std::string range_source;                 // "options", "metadata" or "estimated from the views"
   int occlusion_candidates = 0;             // pixels that used the edge-split angular patch
   int thin_structure_refusals = 0;          // (pixel, partial patch) pairs refused on thin structures in front
+  int mixed_edge_moves = 0;                 // edge pixels given to the farther side (ReassignMixedEdgePixels)
   double occlusion_radius = 0.0;            // the radius used (after the automatic choice)
   double noise_sigma = 0.0;                 // estimated noise of the centre view (Immerkaer), sample units
   double noise_sigma_lower_quartile = 0.0;  // the same from the lower quartile (what the presmoothing follows)
@@ -70,7 +75,8 @@ DisparityRange ResolveDisparityRange(const LightField& light_field, const DepthO
                                      std::string* source = nullptr);
 
 // Occlusion-aware centre-view disparity: cost volume (with the half-patch choice near edges), semi-global
-// aggregation, sub-label refinement, weighted median, textureless fill. Throws lfsp::Error on unusable input.
+// aggregation, sub-label refinement, weighted median, textureless fill, mixed edge pixels. Throws lfsp::Error on
+// unusable input.
 DepthResult EstimateDepth(const LightField& light_field, const DepthOptions& options);
 
 }  // namespace lfsp::depth
