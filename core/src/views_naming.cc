@@ -84,9 +84,23 @@ ViewsLayout HciLayout(const fs::path& folder, const std::map<int, fs::path>& fil
   layout.nu = nu;
   layout.nv = nv;
   for (const auto& [camera, path] : files) layout.files.push_back(path);
+  // weight_CamNNN holds the ray weights of input_CamNNN. Only their number used to be compared, so weights numbered
+  // from 1 beside views numbered from 0 gave every view the next camera's weights; they are paired by camera
+  // number, and weights that do not cover exactly the views' cameras are refused (no weight files: no weights).
   const std::map<int, fs::path> weights = FindHciFiles(folder, "weight");
-  if (static_cast<int>(weights.size()) == view_count)
-    for (const auto& [camera, path] : weights) layout.weight_files.push_back(path);
+  if (!weights.empty()) {
+    for (int camera = 0; camera < view_count; ++camera)
+      if (!weights.count(camera))
+        ThrowFileError(folder.string(), "weight files do not match the views: " + files.at(camera).filename().string() +
+                                            " has no " + internal::HciViewFileName("weight", camera, "") +
+                                            " (weights pair with views by camera number)");
+    for (const auto& [camera, path] : weights)  // every camera of a view has its weight: the rest have no view
+      if (camera >= view_count)
+        ThrowFileError(folder.string(), "weight files do not match the views: " + path.filename().string() +
+                                            " has no view (the views are " + internal::HciViewFileName("input", 0, "") +
+                                            ".." + internal::HciViewFileName("input", view_count - 1, "") + ")");
+    for (int camera = 0; camera < view_count; ++camera) layout.weight_files.push_back(weights.at(camera));
+  }
   layout.description = "HCI naming input_Cam000.. (camera = row x " + std::to_string(nu) + " + column), " +
                        std::to_string(nu) + "x" + std::to_string(nv) + " views";
   return layout;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "lfsp/core/conventions.h"
 #include "lfsp/core/error.h"
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/image_io.h"
@@ -75,6 +76,44 @@ TEST(BadInput, ViewsOfDifferentSizes) {
   WriteImage(cv::Mat(12, 15, CV_32FC3, cv::Scalar::all(0.5)), temp / "lf" / "input_Cam002.png");
   ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {"input_Cam002.png", "15x12", "16x12"});
   ExpectInfoFailsCleanly(temp / "lf", "input_Cam002.png");
+}
+
+// HCI weight_Cam### files are ray weights of the view with the same camera number. Only their count was checked, so
+// weight_Cam001..009 beside input_Cam000..008 gave every view the next camera's weights without a word.
+TEST(BadInput, HciWeightsPairedByCameraNumber) {
+  TempDir temp;
+  LightField light_field({3, 3, 16, 12, 3});
+  std::fill(light_field.data(), light_field.data() + light_field.size(), 0.5f);
+  light_field.EnableWeights();
+  for (int camera = 0; camera < 9; ++camera) {
+    float* weights = light_field.weights().ViewData(ViewFromCameraNumber(camera, 3));
+    std::fill(weights, weights + 16 * 12, 0.1f * static_cast<float>(camera + 1));
+  }
+  WriteViewsFolder(light_field, temp / "lf");
+  const auto weight = [&](int camera) { return temp / "lf" / ("weight_Cam00" + std::to_string(camera) + ".png"); };
+
+  const LightField read = ReadViewsFolder(temp / "lf");
+  ASSERT_TRUE(read.HasWeights());
+  for (int camera = 0; camera < 9; ++camera)
+    EXPECT_NEAR(read.weights().ViewData(ViewFromCameraNumber(camera, 3))[0], 0.1f * static_cast<float>(camera + 1),
+                1e-4f)
+        << "camera " << camera;
+
+  // Numbered from 1: camera 0 has no weight, and weight_Cam009 no view.
+  fs::copy(temp / "lf", temp / "shifted");
+  for (int camera = 8; camera >= 0; --camera)
+    fs::rename(temp / "shifted" / weight(camera).filename(), temp / "shifted" / weight(camera + 1).filename());
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "shifted"); }, {"shifted", "input_Cam000.png", "no weight"});
+  ExpectInfoFailsCleanly(temp / "shifted", "input_Cam000.png");
+
+  fs::copy(temp / "lf", temp / "missing");
+  fs::remove(temp / "missing" / weight(4).filename());
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "missing"); }, {"missing", "input_Cam004.png", "no weight"});
+
+  fs::copy(temp / "lf", temp / "extra");
+  fs::copy_file(weight(8), temp / "extra" / weight(9).filename());
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "extra"); }, {"extra", "weight_Cam009.png", "no view"});
+  ExpectInfoFailsCleanly(temp / "extra", "weight_Cam009.png");
 }
 
 TEST(BadInput, GarbagePfmHeader) {

@@ -24,12 +24,13 @@ struct ViewsLayout {
   int nu = 0;          // views per row (columns)
   int nv = 0;          // rows
   std::vector<std::filesystem::path> files;         // by camera number v * nu + u
-  std::vector<std::filesystem::path> weight_files;  // the same for HCI weight_Cam### files, else empty
+  std::vector<std::filesystem::path> weight_files;  // HCI weight_Cam### by camera number, like files, else empty
   std::string description;                          // one line for the log: naming, index ranges, size
 };
 
 // The layout of the views in `folder`. `pattern` (from --views-pattern) overrides detection. Throws lfsp::Error
-// naming the folder (or the first missing view) when no layout fits.
+// naming the folder (or the first missing view) when no layout fits, and naming the folder and the first camera
+// without a weight (or weight without a view) when HCI weight_Cam### files do not cover exactly the views' cameras.
 ViewsLayout FindViewsLayout(const std::filesystem::path& folder, const std::string& pattern = "");
 
 }  // namespace lfsp
