@@ -57,7 +57,7 @@ OIIO::TypeDesc MatType(int depth) {
 
 // Reads all pixels of the open file into `destination` (CV_32FC(n)). Integer files are read in their own type and
 // scaled here as k / (2^bits - 1), so every 8- or 16-bit value maps to exactly the same float on every path.
-bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination) {
+bool ReadSamples(OIIO::ImageInput& input, cv::Mat& destination) {
   const OIIO::ImageSpec& spec = input.spec();
   const int channels = destination.channels();
   const std::size_t count = destination.total() * static_cast<std::size_t>(channels);
@@ -75,6 +75,15 @@ bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination) {
     return true;
   }
   return input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, out);
+}
+
+// ReadSamples, failing also when the read met damage that the format's library only warns about. libjpeg decodes a
+// truncated or corrupt JPEG to the end, filling what is missing with grey ("Premature end of JPEG file"), and
+// libtiff's strip reader may come short of a cut TIFF's last strips: OpenImageIO records these as errors of the
+// input but reports the read as done. What the input recorded while opening (header remarks) is cleared first.
+bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination) {
+  (void)input.geterror();
+  return ReadSamples(input, destination) && !input.has_error();
 }
 
 // Float samples in [0, 1] quantised with rounding to the storage type (OpenImageIO's own conversion may truncate).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <opencv2/core.hpp>
 #include <string>
 
 #include "lfsp/core/conventions.h"
@@ -114,6 +115,55 @@ TEST(BadInput, HciWeightsPairedByCameraNumber) {
   fs::copy_file(weight(8), temp / "extra" / weight(9).filename());
   ExpectErrorMentioning([&] { ReadViewsFolder(temp / "extra"); }, {"extra", "weight_Cam009.png", "no view"});
   ExpectInfoFailsCleanly(temp / "extra", "weight_Cam009.png");
+}
+
+// A <row>_<col> folder of noise views in `extension`, with view (row 2, column 2) replaced by the first `keep` of
+// its bytes (a fraction of the file).
+fs::path ViewsFolderWithACutView(const TempDir& temp, const std::string& name, const std::string& extension,
+                                 double keep) {
+  const fs::path folder = temp / name;
+  fs::create_directories(folder);
+  cv::RNG random(7);
+  for (int row = 1; row <= 3; ++row)
+    for (int column = 1; column <= 3; ++column) {
+      cv::Mat view(64, 80, CV_32FC3);
+      random.fill(view, cv::RNG::UNIFORM, 0.0f, 1.0f);
+      WriteImage(view, folder / (std::to_string(row) + "_" + std::to_string(column) + extension));
+    }
+  const fs::path cut = folder / ("2_2" + extension);
+  const std::string bytes = ReadBytes(cut);
+  WriteBytes(cut, bytes.substr(0, static_cast<std::size_t>(static_cast<double>(bytes.size()) * keep)));
+  return cut;
+}
+
+// libjpeg decodes a truncated JPEG to the end, filling what is missing with grey, and only warns; OpenImageIO records
+// the warning but reports the read as done. `lfsp convert` wrote such a folder with exit status 0.
+TEST(BadInput, TruncatedOrCorruptJpegView) {
+  TempDir temp;
+  const fs::path cut = ViewsFolderWithACutView(temp, "jpeg", ".jpg", 0.4);
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "jpeg"); }, {cut.string(), "truncated or corrupt"});
+  ExpectInfoFailsCleanly(temp / "jpeg", "2_2.jpg");
+  const auto convert = RunLfsp({"convert", (temp / "jpeg").string(), (temp / "out.h5").string()});
+  EXPECT_EQ(convert.exit_status, 2) << convert.err;
+  EXPECT_EQ(std::count(convert.err.begin(), convert.err.end(), '\n'), 1) << convert.err;
+  EXPECT_NE(convert.err.find("2_2.jpg"), std::string::npos) << convert.err;
+  EXPECT_FALSE(fs::exists(temp / "out.h5"));
+
+  // Whole, but with an end-of-image marker in the middle of the compressed data.
+  const fs::path corrupt = ViewsFolderWithACutView(temp, "corrupt", ".jpg", 1.0);
+  std::string bytes = ReadBytes(corrupt);
+  bytes[bytes.size() / 2] = '\xFF';
+  bytes[bytes.size() / 2 + 1] = '\xD9';
+  WriteBytes(corrupt, bytes);
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "corrupt"); }, {corrupt.string(), "truncated or corrupt"});
+
+  // PNG and TIFF views cut short were refused already (the PNG's chunks, libtiff's strips); they stay refused.
+  for (const std::string extension : {".png", ".tif"}) {
+    const std::string name = "cut_" + extension.substr(1);
+    const fs::path other = ViewsFolderWithACutView(temp, name, extension, 0.6);
+    ExpectErrorMentioning([&] { ReadViewsFolder(temp / name); }, {other.string()});
+    ExpectInfoFailsCleanly(temp / name, other.string());
+  }
 }
 
 TEST(BadInput, GarbagePfmHeader) {

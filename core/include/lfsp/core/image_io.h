@@ -16,7 +16,8 @@ struct ImageFile {
   std::map<std::string, std::string> text;  // string attributes (PNG text chunks, e.g. "lfsp:nu")
 };
 
-// Reads the whole image. Its declared size is checked against the file's (lfsp/core/input_limits.h) first.
+// Reads the whole image. Its declared size is checked against the file's (lfsp/core/input_limits.h) first. A
+// truncated or corrupt file is lfsp::Error naming it, also when the format's library only warns (a JPEG cut short).
 ImageFile ReadImage(const std::filesystem::path& path);
 
 // What an image file declares, read from its header without decoding the pixels (a few small reads).
