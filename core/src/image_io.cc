@@ -162,11 +162,14 @@ void CheckPngIsComplete(const std::filesystem::path& path) {
 }
 
 // Opens an image for reading after the checks every reader needs: complete PNG chunks, a layout lfsp handles.
-std::unique_ptr<OIIO::ImageInput> OpenChecked(const std::filesystem::path& path) {
+std::unique_ptr<OIIO::ImageInput> OpenChecked(const std::filesystem::path& path,
+                                              ImageAlpha alpha = ImageAlpha::kAssociated) {
   const std::string name = path.string();
   RequireRegularFile(path);
   CheckPngIsComplete(path);
-  auto input = OIIO::ImageInput::open(name);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // the readers leave colour as stored
+  auto input = OIIO::ImageInput::open(name, alpha == ImageAlpha::kAsStored ? &config : nullptr);
   if (!input) {
     std::string why = OIIO::geterror();
     if (why.empty()) why = "cannot open image";
@@ -187,9 +190,9 @@ ImageHeader ReadImageHeader(const std::filesystem::path& path) {
   return {spec.width, spec.height, spec.nchannels, static_cast<int>(spec.format.size() * 8)};
 }
 
-ImageFile ReadImage(const std::filesystem::path& path) {
+ImageFile ReadImage(const std::filesystem::path& path, ImageAlpha alpha) {
   const std::string name = path.string();
-  auto input = OpenChecked(path);
+  auto input = OpenChecked(path, alpha);
   const OIIO::ImageSpec& spec = input->spec();
   CheckDeclaredAllocation(
       name,
@@ -207,6 +210,7 @@ ImageFile ReadImage(const std::filesystem::path& path) {
   for (const auto& attribute : spec.extra_attribs) {
     if (attribute.type() == OIIO::TypeDesc::STRING) image.text[attribute.name().string()] = attribute.get_string();
   }
+  image.orientation = spec.get_int_attribute("Orientation", 1);
   input->close();
   return image;
 }

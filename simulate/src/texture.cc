@@ -4,11 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <opencv2/core.hpp>
+#include <vector>
 
 #include "json_fields.h"
 #include "lfsp/core/error.h"
+#include "lfsp/core/file_names.h"
+#include "lfsp/core/image_io.h"
 
 namespace lfsp::simulate {
 namespace {
@@ -131,14 +133,32 @@ std::string KindName(Texture::Kind kind) {
   return "constant";
 }
 
+// Through ReadImage, like every image lfsp reads: the size the file declares is checked against its bytes before
+// anything is allocated, and a missing, truncated or corrupt file is one lfsp::Error naming it (cv::imread allocated
+// whatever a header declared, and libpng printed a line of its own for a truncated file).
 std::shared_ptr<const cv::Mat> LoadImageTexture(const std::string& path, const std::string& where) {
-  cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
-  if (bgr.empty()) throw Error(where + ".path: cannot read image texture '" + path + "'");
-  const double scale = bgr.depth() == CV_16U ? 1.0 / 65535.0 : bgr.depth() == CV_8U ? 1.0 / 255.0 : 1.0;
-  cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  ImageFile file;
+  try {
+    file = ReadImage(path, ImageAlpha::kAsStored);  // alpha is ignored, so colour as stored (as cv::imread)
+  } catch (const Error& error) {
+    throw Error(where + ".path: " + error.what());
+  }
+  // RGB(A) or grey samples in [0, 1] (float files as stored): grey goes to all three channels, alpha is dropped.
+  std::vector<cv::Mat> planes;
+  cv::split(file.pixels, planes);
+  const bool grey = planes.size() < 3;
   auto image = std::make_shared<cv::Mat>();
-  rgb.convertTo(*image, CV_32FC3, scale);
+  cv::merge(std::vector<cv::Mat>{planes[0], planes[grey ? 0 : 1], planes[grey ? 0 : 2]}, *image);
+  // A JPEG photo is turned upright by its Exif orientation, as cv::imread did (OpenImageIO leaves it as stored).
+  const std::string extension = LowerExtension(path);
+  if (extension == ".jpg" || extension == ".jpeg") {
+    cv::Mat& m = *image;
+    const int orientation = file.orientation;
+    if (orientation >= 5 && orientation <= 8) cv::transpose(m, m);
+    if (orientation == 2 || orientation == 6) cv::flip(m, m, 1);  // horizontally
+    if (orientation == 3 || orientation == 7) cv::flip(m, m, -1);
+    if (orientation == 4 || orientation == 8) cv::flip(m, m, 0);  // vertically
+  }
   return image;
 }
 

@@ -1,8 +1,12 @@
 // `lfsp simulate` end to end: deterministic outputs, bad input, and the bundled samples are loadable and up to date.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "lfsp/core/hdf5_bundle.h"
 #include "lfsp/core/load.h"
@@ -29,6 +33,24 @@ void ExpectSameBundle(const std::filesystem::path& a, const std::filesystem::pat
   EXPECT_EQ(0, std::memcmp(x.disparity->data(), y.disparity->data(),
                            static_cast<std::size_t>(x.disparity->width() * x.disparity->height()) * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(x.labels->data(), y.labels->data(), x.labels->size() * sizeof(std::int32_t)));
+}
+
+std::string BigEndian32(std::uint32_t v) {
+  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                     static_cast<char>(v)};
+}
+
+// A well-formed PNG (valid CRCs) of 57 bytes that declares width x height RGB8 and holds one empty IDAT.
+std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
+  const auto chunk = [](const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const auto crc = static_cast<std::uint32_t>(
+        crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+    return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
+  };
+  return "\x89PNG\r\n\x1a\n" +
+         chunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
+         chunk("IDAT", "") + chunk("IEND", "");
 }
 
 TEST(SimulateCli, SameSeedGivesIdenticalFiles) {
@@ -96,6 +118,37 @@ TEST(SimulateCli, BadInputExitsWithStatus2AndAMessage) {
   r = testing::RunLfsp({"simulate", "--ideal-only", "--size", "12by12", "--out", (dir / "o").string()});
   EXPECT_EQ(r.exit_status, 2);
   EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+}
+
+// A scene's image texture that is cut short is refused with lfsp's one line and nothing written: libpng printed a
+// line of its own first when textures were read with cv::imread.
+TEST(SimulateCli, TruncatedImageTextureGivesOneLine) {
+  testing::TempDir dir;
+  cv::Mat texture(32, 32, CV_8UC3);
+  cv::randu(texture, 0, 256);
+  ASSERT_TRUE(cv::imwrite((dir / "texture.png").string(), texture));
+  const std::string bytes = testing::ReadBytes(dir / "texture.png");
+  testing::WriteBytes(dir / "texture.png", bytes.substr(0, bytes.size() / 2));
+  testing::WriteBytes(dir / "scene.json",
+                      R"({"objects": [{"disparity": 0.5, "texture": {"type": "image", "path": "texture.png"}}]})");
+  const auto r = testing::RunLfsp({"simulate", "--ideal-only", "--views", "3", "--size", "32x32", "--scene",
+                                   (dir / "scene.json").string(), "--out", (dir / "o").string()});
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("lfsp: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find((dir / "texture.png").string()), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o"));
+
+  // A texture declaring far more pixels than its bytes hold (scene_test.cc builds one) is refused before any
+  // allocation: one line, and the run stays small.
+  testing::WriteBytes(dir / "texture.png", PngDeclaring(100000, 100000));
+  const auto huge = testing::RunLfsp({"simulate", "--ideal-only", "--views", "3", "--size", "32x32", "--scene",
+                                      (dir / "scene.json").string(), "--out", (dir / "o").string()});
+  EXPECT_EQ(huge.exit_status, 2) << huge.err;
+  EXPECT_EQ(std::count(huge.err.begin(), huge.err.end(), '\n'), 1) << huge.err;
+  EXPECT_NE(huge.err.find("declares"), std::string::npos) << huge.err;
+  EXPECT_LT(huge.peak_rss_kb, 1024L * 1024L) << huge.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o"));
 }
 
 // The bundled samples load, and their geometry matches the camera model in this build (regenerate them with

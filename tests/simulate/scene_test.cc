@@ -1,8 +1,11 @@
 // Scene descriptions: built-ins parse, JSON round-trips, and bad input names the field.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
 #include <cstring>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "lfsp/core/error.h"
 #include "lfsp/simulate/render.h"
@@ -159,6 +162,108 @@ TEST(Scene, PngImageTexture) {
       SceneFromJson(nlohmann::json::parse(R"({"objects": [{"texture": {"type": "image", "path": "missing.png"}}]})"),
                     dir.path().string()),
       Error);
+}
+
+std::string BigEndian32(std::uint32_t v) {
+  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                     static_cast<char>(v)};
+}
+
+std::string PngChunk(const std::string& type, const std::string& data) {
+  const std::string body = type + data;
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+  return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
+}
+
+// A well-formed PNG (valid CRCs) of 57 bytes that declares width x height RGB8 and holds one empty IDAT.
+std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
+  return "\x89PNG\r\n\x1a\n" +
+         PngChunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
+         PngChunk("IDAT", "") + PngChunk("IEND", "");
+}
+
+std::string TextureError(const std::filesystem::path& dir, const std::string& file) {
+  return testing::ErrorOf([&] {
+    SceneFromJson(nlohmann::json::parse(R"({"objects": [{"texture": {"type": "image", "path": ")" + file + R"("}}]})"),
+                  dir.string());
+  });
+}
+
+// Image textures were read with cv::imread, past the checks every other image gets: a PNG declaring 30000 x 30000
+// pixels made simulate allocate 16 GB, and a truncated one had libpng print a line of its own. They now go through
+// ReadImage, which refuses both naming the file.
+TEST(Scene, ImageTextureGetsTheImageChecks) {
+  testing::TempDir dir;
+  testing::WriteBytes(dir / "huge.png", PngDeclaring(100000, 100000));
+  std::string error = TextureError(dir.path(), "huge.png");
+  EXPECT_NE(error.find("objects[0].texture.path"), std::string::npos) << error;
+  EXPECT_NE(error.find((dir / "huge.png").string()), std::string::npos) << error;
+  EXPECT_NE(error.find("declares"), std::string::npos) << error;
+
+  cv::Mat grid(16, 16, CV_8UC3, cv::Scalar(10, 20, 30));
+  ASSERT_TRUE(cv::imwrite((dir / "whole.png").string(), grid));
+  const std::string bytes = testing::ReadBytes(dir / "whole.png");
+  testing::WriteBytes(dir / "cut.png", bytes.substr(0, bytes.size() / 2));
+  error = TextureError(dir.path(), "cut.png");
+  EXPECT_NE(error.find((dir / "cut.png").string()), std::string::npos) << error;
+  EXPECT_NE(error.find("truncated"), std::string::npos) << error;
+  error = TextureError(dir.path(), "missing.png");
+  EXPECT_NE(error.find((dir / "missing.png").string()), std::string::npos) << error;
+}
+
+// The texture as cv::imread made it before: Exif orientation applied, BGR to RGB, integers scaled to [0, 1].
+cv::Mat ReadAsBefore(const std::filesystem::path& path) {
+  const cv::Mat bgr = cv::imread(path.string(), cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
+  cv::Mat rgb, texture;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  rgb.convertTo(texture, CV_32FC3, bgr.depth() == CV_16U ? 1.0 / 65535.0 : 1.0 / 255.0);
+  return texture;
+}
+
+// `jpeg` with an Exif block (after its JFIF segment) whose Orientation is `orientation`.
+std::string WithExifOrientation(const std::string& jpeg, int orientation) {
+  const std::string exif = std::string("Exif\0\0II*\0\x08\0\0\0\x01\0\x12\x01\x03\0\x01\0\0\0", 24) +
+                           static_cast<char>(orientation) + std::string(7, '\0');
+  const std::size_t length = exif.size() + 2;
+  const std::string segment =
+      std::string("\xFF\xE1") + static_cast<char>(length >> 8) + static_cast<char>(length & 0xFF) + exif;
+  const std::size_t after_jfif = 4 + ((static_cast<unsigned char>(jpeg[4]) << 8) | static_cast<unsigned char>(jpeg[5]));
+  return jpeg.substr(0, after_jfif) + segment + jpeg.substr(after_jfif);
+}
+
+// Grey, RGBA, 16-bit and JPEG textures (one turned by its Exif orientation) read as they did with cv::imread: the
+// same size and orientation, and the same samples but for the last bit of some (k / 255.0f, as ReadImage maps every
+// 8-bit value, against cv::convertTo's k * (1 / 255.0)).
+TEST(Scene, ImageTexturesReadAsBefore) {
+  testing::TempDir dir;
+  cv::Mat noise(6, 10, CV_8UC3);
+  cv::randu(noise, 0, 256);
+  std::vector<std::uint8_t> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", noise, jpeg));
+  testing::WriteBytes(dir / "photo.jpg", std::string(jpeg.begin(), jpeg.end()));
+  for (const int orientation : {3, 6, 8})
+    testing::WriteBytes(dir / ("turned" + std::to_string(orientation) + ".jpg"),
+                        WithExifOrientation(std::string(jpeg.begin(), jpeg.end()), orientation));
+  cv::Mat deep(6, 10, CV_16UC3), rgba(6, 10, CV_8UC4), grey(6, 10, CV_8UC1);
+  cv::randu(deep, 0, 65536);
+  cv::randu(rgba, 0, 256);
+  cv::randu(grey, 0, 256);
+  ASSERT_TRUE(cv::imwrite((dir / "deep.png").string(), deep));
+  ASSERT_TRUE(cv::imwrite((dir / "rgba.png").string(), rgba));
+  ASSERT_TRUE(cv::imwrite((dir / "grey.png").string(), grey));
+  for (const std::string name :
+       {"photo.jpg", "turned3.jpg", "turned6.jpg", "turned8.jpg", "deep.png", "rgba.png", "grey.png"}) {
+    const Scene scene = SceneFromJson(
+        nlohmann::json::parse(R"({"objects": [{"texture": {"type": "image", "path": ")" + name + R"("}}]})"),
+        dir.path().string());
+    const cv::Mat& texture = *scene.objects.at(0).texture.image;
+    const cv::Mat before = ReadAsBefore(dir / name);
+    ASSERT_EQ(texture.type(), CV_32FC3) << name;
+    ASSERT_EQ(texture.size(), before.size()) << name;
+    EXPECT_LT(cv::norm(texture, before, cv::NORM_INF), 1e-6) << name;
+  }
+  EXPECT_EQ(ReadAsBefore(dir / "turned6.jpg").size(), cv::Size(6, 10));  // imread did turn it
 }
 
 }  // namespace

@@ -14,11 +14,16 @@ struct ImageFile {
   cv::Mat pixels;                           // CV_32FC(n): integer files scaled to [0, 1], float files as stored
   int bit_depth = 8;                        // bits per sample on disk (8, 16, 32 for float)
   std::map<std::string, std::string> text;  // string attributes (PNG text chunks, e.g. "lfsp:nu")
+  int orientation = 1;                      // Exif/TIFF Orientation (1: as stored); the pixels are left as stored
 };
+
+// The colour samples of a file whose alpha is unassociated (PNG's, most TIFFs'): kAssociated multiplies them by alpha,
+// as OpenImageIO does by default; kAsStored keeps the colour the file holds, for readers that ignore alpha.
+enum class ImageAlpha { kAssociated, kAsStored };
 
 // Reads the whole image. Its declared size is checked against the file's (lfsp/core/input_limits.h) first. A
 // truncated or corrupt file is lfsp::Error naming it, also when the format's library only warns (a JPEG cut short).
-ImageFile ReadImage(const std::filesystem::path& path);
+ImageFile ReadImage(const std::filesystem::path& path, ImageAlpha alpha = ImageAlpha::kAssociated);
 
 // What an image file declares, read from its header without decoding the pixels (a few small reads).
 struct ImageHeader {

@@ -23,7 +23,7 @@ struct Texture {
   float period = 0.1f;                   // checker cell / stripe period / noise feature size, in normalised units
   float angle = 0.0f;                    // stripes and gradient direction, radians from the +x axis
   std::uint32_t seed = 1;                // noise pattern
-  std::string image_path;                // kImage: a PNG (or any OpenCV-readable) image mapped onto [0,1]^2
+  std::string image_path;                // kImage: a PNG (or any image ReadImage reads) mapped onto [0,1]^2
   std::shared_ptr<const cv::Mat> image;  // kImage: CV_32FC3 RGB in [0, 1], loaded once
 
   Rgb Evaluate(float p, float q) const;
