@@ -54,9 +54,15 @@ void RequireUsableDisparityRange(const Metadata& metadata, const std::string& na
   for (const char* key : {"disp_min", "disp_max"}) {
     if (!meta.contains(key)) continue;
     const Metadata& value = meta[key];
-    if (!value.is_number() || !std::isfinite(value.get<double>()))
-      ThrowFileError(name,
-                     std::string("metadata field meta.") + key + " = " + value.dump() + " is not a finite number");
+    if (!value.is_number() || !std::isfinite(value.get<double>())) {
+      // JSON has no NaN or infinity, so dump() writes them as null; parameters.cfg's "nan" is shown as written.
+      const double number = value.is_number() ? value.get<double>() : 0.0;
+      const std::string shown = !value.is_number()   ? value.dump()
+                                : std::isnan(number) ? "nan"
+                                : number > 0         ? "inf"
+                                                     : "-inf";
+      ThrowFileError(name, std::string("metadata field meta.") + key + " = " + shown + " is not a finite number");
+    }
   }
   if (const auto range = DisparityRangeFromMetadata(metadata); range && range->min > range->max)
     ThrowFileError(name, "metadata disparity range meta.disp_min " + std::to_string(range->min) + " > meta.disp_max " +

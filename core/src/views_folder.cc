@@ -13,6 +13,7 @@
 #include "lfsp/core/hci_config.h"
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/load.h"
 #include "lfsp/core/parallel_for.h"
 #include "lfsp/core/views_naming.h"
 #include "views_folder_internal.h"
@@ -22,10 +23,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Transfer TransferFromMetadata(const Metadata& metadata) {
-  if (metadata.contains("lfsp") && metadata["lfsp"].contains("transfer") && metadata["lfsp"]["transfer"].is_string())
-    return TransferFromString(metadata["lfsp"]["transfer"].get<std::string>());
-  return Transfer::kSrgb;  // what PNG views from renderers and cameras hold
+// parameters.cfg's [lfsp] transfer. A value that names no transfer function is the file's fault, so the message
+// names the file (TransferFromString's alone named neither file nor folder; a number was taken for sRGB).
+Transfer TransferFromConfig(const Metadata& metadata, const fs::path& config) {
+  if (!metadata.contains("lfsp") || !metadata["lfsp"].is_object() || !metadata["lfsp"].contains("transfer"))
+    return Transfer::kSrgb;  // what PNG views from renderers and cameras hold
+  const Metadata& value = metadata["lfsp"]["transfer"];
+  if (!value.is_string())
+    ThrowFileError(config.string(), "[lfsp] transfer = " + value.dump() + ": expected 'linear' or 'srgb'");
+  try {
+    return TransferFromString(value.get<std::string>());
+  } catch (const Error& error) {
+    ThrowFileError(config.string(), std::string("[lfsp] transfer: ") + error.what());
+  }
 }
 
 }  // namespace
@@ -47,6 +57,9 @@ LightField ReadViewsFolder(const fs::path& folder, const std::string& views_patt
   std::error_code ec;
   const fs::path config = folder / internal::kConfigName;
   const Metadata metadata = fs::exists(config, ec) ? ReadHciConfig(config) : Metadata::object();
+  // What parameters.cfg says is checked before any view is read, and a value lfsp cannot use named with the file.
+  const Transfer transfer = TransferFromConfig(metadata, config);
+  RequireUsableDisparityRange(metadata, config.string());
   const int view_count = layout.nu * layout.nv;
   spdlog::info("{}: {}", folder.string(), layout.description);
 
@@ -76,7 +89,7 @@ LightField ReadViewsFolder(const fs::path& folder, const std::string& views_patt
       file_bytes);
   LightField light_field(shape);
   light_field.metadata = metadata;
-  light_field.transfer = TransferFromMetadata(metadata);
+  light_field.transfer = transfer;
 
   ParallelFor(view_count, [&](int camera) {
     cv::Mat view = light_field.View(ViewFromCameraNumber(camera, shape.nu));

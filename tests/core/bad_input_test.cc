@@ -166,6 +166,26 @@ TEST(BadInput, TruncatedOrCorruptJpegView) {
   }
 }
 
+// A parameters.cfg value lfsp cannot use is the file's fault: the message names it (it named neither file nor folder).
+TEST(BadInput, UnusableParametersCfgNamesTheFile) {
+  TempDir temp;
+  WriteSmallViewsFolder(temp / "lf");
+  const fs::path config = temp / "lf" / "parameters.cfg";
+  const std::string cams = "[extrinsics]\nnum_cams_x = 3\nnum_cams_y = 3\n\n";
+
+  WriteBytes(config, cams + "[lfsp]\ntransfer = bogus\n");
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {config.string(), "transfer", "'bogus'", "srgb"});
+  ExpectInfoFailsCleanly(temp / "lf", config.string());
+  WriteBytes(config, cams + "[lfsp]\ntransfer = 1\n");  // not a name at all: was read as sRGB
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); }, {config.string(), "transfer", "1"});
+
+  WriteBytes(config, cams + "[meta]\ndisp_min = nan\ndisp_max = 2.8\n");
+  ExpectErrorMentioning([&] { LoadLightField(temp / "lf"); }, {config.string(), "disp_min = nan", "not a finite"});
+  ExpectInfoFailsCleanly(temp / "lf", config.string());
+  WriteBytes(config, cams + "[meta]\ndisp_min = -3.3\ndisp_max = -inf\n");
+  ExpectErrorMentioning([&] { LoadLightField(temp / "lf"); }, {config.string(), "disp_max = -inf"});
+}
+
 TEST(BadInput, GarbagePfmHeader) {
   TempDir temp;
   WriteBytes(temp / "garbage.pfm", "P7\nhello world\n\x01\x02");
