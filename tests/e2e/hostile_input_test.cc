@@ -4,7 +4,6 @@
 
 #include <H5Cpp.h>
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include "lfsp/core/light_field.h"
 #include "lfsp/core/pfm.h"
 #include "lfsp/core/views_folder.h"
+#include "png_bytes.h"
 #include "refusal.h"
 #include "test_support.h"
 
@@ -32,6 +32,7 @@ using testing::WriteBytes;
 
 using testing::ExpectRefused;
 using testing::kSmallInputPeakKb;
+using testing::PngDeclaring;
 
 LightField SmallLightField(int n, int width, int height) {
   LightField light_field({n, n, width, height, 3});
@@ -134,25 +135,6 @@ TEST(HostileInput, SparseAndNegativeLabelValues) {
       RunLfsp({"evaluate", "segmentation", (temp / "negative.h5").string(), "--json", (temp / "n.json").string()}),
       "label -5");
   EXPECT_FALSE(fs::exists(temp / "n.json"));
-}
-
-std::string BigEndian32(std::uint32_t v) {
-  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-                     static_cast<char>(v)};
-}
-
-std::string PngChunk(const std::string& type, const std::string& data) {
-  const std::string body = type + data;
-  const auto crc = static_cast<std::uint32_t>(
-      crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
-  return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
-}
-
-// A well-formed PNG (valid CRCs) that declares width x height RGB8 and holds one empty IDAT: 57 bytes.
-std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
-  return "\x89PNG\r\n\x1a\n" +
-         PngChunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
-         PngChunk("IDAT", "") + PngChunk("IEND", "");
 }
 
 // Item 5: declared sizes drove allocations (a 74-byte PNG declaring 20000 x 20000, a views folder allocated from its

@@ -1,6 +1,5 @@
 // `lfsp simulate` end to end: deterministic outputs, bad input, and the bundled samples are loadable and up to date.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cstring>
@@ -12,6 +11,7 @@
 #include "lfsp/core/load.h"
 #include "lfsp/decode/lytro_capture.h"
 #include "lfsp/simulate/lenslet_camera.h"
+#include "png_bytes.h"
 #include "test_support.h"
 
 namespace lfsp::simulate {
@@ -33,24 +33,6 @@ void ExpectSameBundle(const std::filesystem::path& a, const std::filesystem::pat
   EXPECT_EQ(0, std::memcmp(x.disparity->data(), y.disparity->data(),
                            static_cast<std::size_t>(x.disparity->width() * x.disparity->height()) * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(x.labels->data(), y.labels->data(), x.labels->size() * sizeof(std::int32_t)));
-}
-
-std::string BigEndian32(std::uint32_t v) {
-  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-                     static_cast<char>(v)};
-}
-
-// A well-formed PNG (valid CRCs) of 57 bytes that declares width x height RGB8 and holds one empty IDAT.
-std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
-  const auto chunk = [](const std::string& type, const std::string& data) {
-    const std::string body = type + data;
-    const auto crc = static_cast<std::uint32_t>(
-        crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
-    return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
-  };
-  return "\x89PNG\r\n\x1a\n" +
-         chunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
-         chunk("IDAT", "") + chunk("IEND", "");
 }
 
 TEST(SimulateCli, SameSeedGivesIdenticalFiles) {
@@ -141,7 +123,7 @@ TEST(SimulateCli, TruncatedImageTextureGivesOneLine) {
 
   // A texture declaring far more pixels than its bytes hold (scene_test.cc builds one) is refused before any
   // allocation: one line, and the run stays small.
-  testing::WriteBytes(dir / "texture.png", PngDeclaring(100000, 100000));
+  testing::WriteBytes(dir / "texture.png", testing::PngDeclaring(100000, 100000));
   const auto huge = testing::RunLfsp({"simulate", "--ideal-only", "--views", "3", "--size", "32x32", "--scene",
                                       (dir / "scene.json").string(), "--out", (dir / "o").string()});
   EXPECT_EQ(huge.exit_status, 2) << huge.err;

@@ -1,8 +1,6 @@
 // Scene descriptions: built-ins parse, JSON round-trips, and bad input names the field.
 #include <gtest/gtest.h>
 
-#include <zlib.h>
-
 #include <cstring>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -10,6 +8,7 @@
 #include "lfsp/core/error.h"
 #include "lfsp/simulate/render.h"
 #include "lfsp/simulate/scene.h"
+#include "png_bytes.h"
 #include "test_support.h"
 
 namespace lfsp::simulate {
@@ -164,25 +163,6 @@ TEST(Scene, PngImageTexture) {
       Error);
 }
 
-std::string BigEndian32(std::uint32_t v) {
-  return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-                     static_cast<char>(v)};
-}
-
-std::string PngChunk(const std::string& type, const std::string& data) {
-  const std::string body = type + data;
-  const auto crc = static_cast<std::uint32_t>(
-      crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
-  return BigEndian32(static_cast<std::uint32_t>(data.size())) + body + BigEndian32(crc);
-}
-
-// A well-formed PNG (valid CRCs) of 57 bytes that declares width x height RGB8 and holds one empty IDAT.
-std::string PngDeclaring(std::uint32_t width, std::uint32_t height) {
-  return "\x89PNG\r\n\x1a\n" +
-         PngChunk("IHDR", BigEndian32(width) + BigEndian32(height) + std::string("\x08\x02\x00\x00\x00", 5)) +
-         PngChunk("IDAT", "") + PngChunk("IEND", "");
-}
-
 std::string TextureError(const std::filesystem::path& dir, const std::string& file) {
   return testing::ErrorOf([&] {
     SceneFromJson(nlohmann::json::parse(R"({"objects": [{"texture": {"type": "image", "path": ")" + file + R"("}}]})"),
@@ -195,7 +175,7 @@ std::string TextureError(const std::filesystem::path& dir, const std::string& fi
 // ReadImage, which refuses both naming the file.
 TEST(Scene, ImageTextureGetsTheImageChecks) {
   testing::TempDir dir;
-  testing::WriteBytes(dir / "huge.png", PngDeclaring(100000, 100000));
+  testing::WriteBytes(dir / "huge.png", testing::PngDeclaring(100000, 100000));
   std::string error = TextureError(dir.path(), "huge.png");
   EXPECT_NE(error.find("objects[0].texture.path"), std::string::npos) << error;
   EXPECT_NE(error.find((dir / "huge.png").string()), std::string::npos) << error;
