@@ -77,13 +77,29 @@ bool ReadSamples(OIIO::ImageInput& input, cv::Mat& destination) {
   return input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, out);
 }
 
+// Whether libjpeg's remarks say the compressed data is damaged, not merely unusual (a header remark such as an
+// unknown JFIF revision is not).
+bool ReportsJpegDamage(const std::string& remarks) {
+  return remarks.find("Premature end of JPEG file") != std::string::npos ||
+         remarks.find("Corrupt JPEG data") != std::string::npos;
+}
+
 // ReadSamples, failing also when the read met damage that the format's library only warns about. libjpeg decodes a
 // truncated or corrupt JPEG to the end, filling what is missing with grey ("Premature end of JPEG file"), and
 // libtiff's strip reader may come short of a cut TIFF's last strips: OpenImageIO records these as errors of the
-// input but reports the read as done. What the input recorded while opening (header remarks) is cleared first.
-bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination) {
-  (void)input.geterror();
-  return ReadSamples(input, destination) && !input.has_error();
+// input but reports the read as done. A progressive JPEG is decoded whole while it is opened, so its damage is among
+// what the input recorded then; the rest of that (header remarks) is dropped. A JPEG cut after its last scanline,
+// whose end-of-image marker alone is missing, is refused too: libjpeg says the same of it. `why`: the reader's
+// message when it fails.
+bool ReadAsFloat(OIIO::ImageInput& input, cv::Mat& destination, std::string& why) {
+  const std::string at_open = input.geterror();
+  if (ReportsJpegDamage(at_open)) {
+    why = at_open;
+    return false;
+  }
+  if (ReadSamples(input, destination) && !input.has_error()) return true;
+  why = input.geterror();
+  return false;
 }
 
 // Float samples in [0, 1] quantised with rounding to the storage type (OpenImageIO's own conversion may truncate).
@@ -203,8 +219,7 @@ ImageFile ReadImage(const std::filesystem::path& path, ImageAlpha alpha) {
   ImageFile image;
   image.bit_depth = static_cast<int>(spec.format.size() * 8);
   image.pixels.create(spec.height, spec.width, CV_MAKETYPE(CV_32F, spec.nchannels));
-  if (!ReadAsFloat(*input, image.pixels)) {
-    std::string why = input->geterror();
+  if (std::string why; !ReadAsFloat(*input, image.pixels, why)) {
     ThrowFileError(name, "cannot decode image (truncated or corrupt?)" + (why.empty() ? "" : ": " + why));
   }
   for (const auto& attribute : spec.extra_attribs) {
@@ -228,8 +243,7 @@ int ReadImageInto(const std::filesystem::path& path, cv::Mat& destination) {
                              std::to_string(destination.channels()));
   if (destination.depth() != CV_32F || !destination.isContinuous())
     throw Error("ReadImageInto: destination must be a continuous float image");
-  if (!ReadAsFloat(*input, destination)) {
-    std::string why = input->geterror();
+  if (std::string why; !ReadAsFloat(*input, destination, why)) {
     ThrowFileError(name, "cannot decode image (truncated or corrupt?)" + (why.empty() ? "" : ": " + why));
   }
   return static_cast<int>(spec.format.size() * 8);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "lfsp/core/conventions.h"
@@ -156,6 +157,15 @@ TEST(BadInput, TruncatedOrCorruptJpegView) {
   bytes[bytes.size() / 2 + 1] = '\xD9';
   WriteBytes(corrupt, bytes);
   ExpectErrorMentioning([&] { ReadViewsFolder(temp / "corrupt"); }, {corrupt.string(), "truncated or corrupt"});
+
+  // A progressive JPEG is decoded whole while it is opened: its damage is recorded then, not by the read.
+  const fs::path progressive = ViewsFolderWithACutView(temp, "progressive", ".jpg", 1.0);
+  cv::Mat noise(64, 80, CV_8UC3);
+  cv::RNG(3).fill(noise, cv::RNG::UNIFORM, 0, 256);
+  ASSERT_TRUE(cv::imwrite(progressive.string(), noise, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+  const std::string whole = ReadBytes(progressive);
+  WriteBytes(progressive, whole.substr(0, whole.size() * 2 / 5));
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "progressive"); }, {progressive.string(), "truncated or corrupt"});
 
   // PNG and TIFF views cut short were refused already (the PNG's chunks, libtiff's strips); they stay refused.
   for (const std::string extension : {".png", ".tif"}) {
