@@ -41,7 +41,9 @@ LightField ReadEslf(const std::filesystem::path& path, const EslfOptions& option
   shape.channels = std::min(image.pixels.channels(), 3);
   LightField light_field(shape);
   const auto transfer = image.text.find("lfsp:transfer");
-  light_field.transfer = transfer != image.text.end() ? TransferFromString(transfer->second) : Transfer::kSrgb;
+  light_field.transfer = transfer != image.text.end()
+                             ? TransferFromFile(transfer->second, name, "text chunk lfsp:transfer")
+                             : Transfer::kSrgb;
 
   const int source_channels = image.pixels.channels();
   const int channels = shape.channels;

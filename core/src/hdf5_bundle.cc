@@ -442,7 +442,7 @@ LightField ReadLightFieldWithWeights(const H5::H5File& file, const H5::DataSet& 
                                      const ViewBlock& block, const BundleParts& parts, const std::string& name) {
   LightField light_field = ReadLightFieldDataset(samples, stored, block, name);
   const std::string transfer = ReadStringAttribute(file, "transfer");
-  light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromString(transfer);
+  light_field.transfer = transfer.empty() ? Transfer::kSrgb : TransferFromFile(transfer, name, "attribute transfer");
   const std::string metadata = ReadStringAttribute(file, "metadata");
   if (!metadata.empty()) {
     light_field.metadata = ParseUntrustedJsonObject(metadata, name + ": attribute 'metadata'");

@@ -15,6 +15,14 @@ Transfer TransferFromString(const std::string& name) {
   throw Error("unknown transfer function '" + name + "' (expected 'linear' or 'srgb')");
 }
 
+Transfer TransferFromFile(const std::string& name, const std::string& file, const std::string& where) {
+  try {
+    return TransferFromString(name);
+  } catch (const Error& error) {
+    ThrowFileError(file, where + ": " + error.what());
+  }
+}
+
 std::string ToString(const LightFieldShape& shape) {
   return std::to_string(shape.nv) + "x" + std::to_string(shape.nu) + " views of " + std::to_string(shape.height) + "x" +
          std::to_string(shape.width) + "x" + std::to_string(shape.channels);

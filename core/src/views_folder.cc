@@ -31,11 +31,7 @@ Transfer TransferFromConfig(const Metadata& metadata, const fs::path& config) {
   const Metadata& value = metadata["lfsp"]["transfer"];
   if (!value.is_string())
     ThrowFileError(config.string(), "[lfsp] transfer = " + value.dump() + ": expected 'linear' or 'srgb'");
-  try {
-    return TransferFromString(value.get<std::string>());
-  } catch (const Error& error) {
-    ThrowFileError(config.string(), std::string("[lfsp] transfer: ") + error.what());
-  }
+  return TransferFromFile(value.get<std::string>(), config.string(), "[lfsp] transfer");
 }
 
 }  // namespace

@@ -18,6 +18,8 @@ enum class Transfer { kLinear, kSrgb };
 
 std::string ToString(Transfer transfer);
 Transfer TransferFromString(const std::string& name);  // throws lfsp::Error on an unknown name
+// The same for a name read from a file: the error names `file` and `where` in it (an attribute, a text chunk).
+Transfer TransferFromFile(const std::string& name, const std::string& file, const std::string& where);
 
 // The size of a 4D light field: nv x nu views of height x width pixels with `channels` samples each.
 struct LightFieldShape {
