@@ -156,8 +156,8 @@ void AddDepthArguments(CLI::App* command, DepthArguments& arguments) {
   command
       ->add_option("--mixed-edge-share", method.mixed_edges.max_share,
                    "Last step: a pixel on the nearer side of an occlusion edge whose colour holds less than this share "
-                   "of the nearer surface's, in RGB and in chromaticity, takes the farther side's disparity (the "
-                   "foreground no longer reads a pixel fat: occluders 9x9x512x512 BadPix 0.07 1.74 -> 1.26 %); 0 = off")
+                   "of the nearer surface's, in RGB and in chromaticity, takes the farther side's disparity, so the "
+                   "foreground no longer reads a pixel fat (strips up to 2 px wide never move; README, depth); 0 = off")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
 }

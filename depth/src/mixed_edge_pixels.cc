@@ -16,7 +16,8 @@ using Colour = std::array<float, 3>;
 float Dot(const Colour& a, const Colour& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Colour Minus(const Colour& a, const Colour& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
-// RGB over its sum; a dark colour's sum is held at 1e-3 so that noise about black does not swing it.
+// RGB over its sum (held at 1e-3 only so that black does not divide by zero). Near black the chromaticity is mostly
+// noise, so a side that dark votes at random; the RGB share, which must agree, still decides for such pixels.
 Colour Chromaticity(const Colour& c) {
   const float sum = std::max(c[0] + c[1] + c[2], 1e-3f);
   return {c[0] / sum, c[1] / sum, c[2] / sum};

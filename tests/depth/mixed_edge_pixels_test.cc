@@ -85,6 +85,30 @@ TEST(MixedEdgePixels, SidesOfOneChromaticityDoNotDecide) {
   EXPECT_EQ(edge.At(20), 1.0f);
 }
 
+// Each side stands for one surface only where it is even in disparity over `depth` pixels: a red thing nearer still
+// right behind the edge pixel (a strip of foreground no wider than two pixels), a farther side that steps again,
+// or a side pixel of unknown disparity, and the pixel stays.
+TEST(MixedEdgePixels, SidesThatAreNotEvenDoNotDecide) {
+  const auto at_column = [](Edge& edge, int x, float value) {
+    for (int y = 0; y < kSize; ++y) edge.disparity.at(y, x) = value;
+  };
+  const auto fattened = [] {
+    Edge edge(kRed, kBlue, 20, 21);
+    edge.SetColumn(20, Mix(kRed, kBlue, 1.0f / 3.0f));
+    return edge;
+  };
+  Edge nearer_behind = fattened();
+  at_column(nearer_behind, 18, 2.0f);
+  Edge farther_steps = fattened();
+  at_column(farther_steps, 22, -1.0f);
+  Edge unknown_behind = fattened();
+  at_column(unknown_behind, 19, std::numeric_limits<float>::quiet_NaN());
+  for (Edge* edge : {&nearer_behind, &farther_steps, &unknown_behind}) {
+    EXPECT_EQ(ReassignMixedEdgePixels(edge->disparity, edge->guide), 0);
+    EXPECT_EQ(edge->At(20), 1.0f);
+  }
+}
+
 TEST(MixedEdgePixels, OffAndNonFiniteDisparitiesLeaveTheMapAsItWas) {
   Edge edge(kRed, kBlue, 20, 21);
   edge.SetColumn(20, Mix(kRed, kBlue, 1.0f / 3.0f));

@@ -52,10 +52,10 @@ struct DepthResult {
   DisparityMap disparity;   // centre view, px per view step, HCI convention
   DisparityMap confidence;  // [0, 1]
   DisparityRange range;
-  std::string range_source;                 // "options", "metadata" or "estimated from the views"
-  int occlusion_candidates = 0;             // pixels that used the edge-split angular patch
-  int thin_structure_refusals = 0;          // (pixel, partial patch) pairs refused on thin structures in front
-  int mixed_edge_moves = 0;                 // edge pixels given to the farther side (ReassignMixedEdgePixels)
+  std::string range_source;         // "options", "metadata" or "estimated from the views"
+  int occlusion_candidates = 0;     // pixels that used the edge-split angular patch
+  int thin_structure_refusals = 0;  // (pixel, partial patch) pairs refused on thin structures in front
+  int mixed_edge_moves = 0;  // moves to a farther side (ReassignMixedEdgePixels; a pixel moved along two counts twice)
   double occlusion_radius = 0.0;            // the radius used (after the automatic choice)
   double noise_sigma = 0.0;                 // estimated noise of the centre view (Immerkaer), sample units
   double noise_sigma_lower_quartile = 0.0;  // the same from the lower quartile (what the presmoothing follows)

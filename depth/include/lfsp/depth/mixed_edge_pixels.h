@@ -31,8 +31,9 @@ struct MixedEdgeOptions {
 };
 
 // Moves the mixed edge pixels of `disparity` to the farther side, as above; returns how many moves were made over
-// all rounds. `guide_rgb`: the centre view, CV_32FC3, the disparity's size. Non-finite disparities neither move nor
-// stand for a side.
+// all rounds (a pixel that moves along two directions in one round counts twice). A foreground strip no wider than
+// `depth` pixels has no even side behind its edge pixels, so thin structures never move. `guide_rgb`: the centre view,
+// CV_32FC3, the disparity's size. Non-finite disparities neither move nor stand for a side.
 int ReassignMixedEdgePixels(DisparityMap& disparity, const cv::Mat& guide_rgb, const MixedEdgeOptions& options = {});
 
 }  // namespace lfsp::depth
