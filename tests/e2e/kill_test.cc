@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -84,26 +85,36 @@ TEST(Kill, DecodeKilledThenRerun) {
   const fs::path out = temp / "decoded.h5";
   const std::vector<std::string> arguments = {"decode", sample.string(), "--out", out.string(), "-q"};
   // Timed on another output, so that the kills below land at fractions of a whole run on a fast machine and a slow
-  // one (a fixed 0.1-0.5 s could all come after a fast run had finished, and the test would kill nothing).
-  const auto start = std::chrono::steady_clock::now();
-  ASSERT_EQ(RunLfsp({"decode", sample.string(), "--out", (temp / "timing.h5").string(), "-q"}).exit_status, 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // one (a fixed 0.1-0.5 s could all come after a fast run had finished, and the test would kill nothing); the
+  // quicker of two runs, since the first one starts cold.
+  double wall = 1e9;
+  for (int run = 0; run < 2; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    ASSERT_EQ(RunLfsp({"decode", sample.string(), "--out", (temp / "timing.h5").string(), "-q"}).exit_status, 0);
+    wall = std::min(wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
   fs::remove(temp / "timing.h5");
+  // A kill can land after the output was renamed into place and before the process ended: then the file is whole.
+  const auto whole = [&] { return RunLfsp({"info", out.string()}).exit_status == 0; };
 
   int killed = 0;
-  for (const double fraction : {0.2, 0.4, 0.6}) {
+  for (const double fraction : {0.15, 0.3, 0.45}) {
     SCOPED_TRACE(fraction);
     if (!RunLfspKilledAfter(arguments, fraction * wall)) break;  // finished: the reruns below take over
     ++killed;
-    EXPECT_FALSE(fs::exists(out)) << "a killed decode must not leave a file under the output's name";
+    if (fs::exists(out)) {
+      EXPECT_TRUE(whole()) << "a killed decode must leave no file under the output's name, or a whole one";
+      fs::remove(out);
+    }
   }
   ASSERT_EQ(RunLfsp(arguments).exit_status, 0);
   const std::string complete = ReadBytes(out);
-  for (const double fraction : {0.2, 0.5}) {
+  for (const double fraction : {0.1, 0.2, 0.4, 0.1, 0.1}) {
+    if (killed >= 4) break;
     SCOPED_TRACE(fraction);
     if (RunLfspKilledAfter(arguments, fraction * wall)) {
       ++killed;
-      EXPECT_EQ(ReadBytes(out), complete) << "a killed rerun must leave the previous output as it was";
+      EXPECT_TRUE(ReadBytes(out) == complete || whole()) << "a killed rerun must leave a whole output";
     }
   }
   EXPECT_GE(killed, 2) << "the decodes finished before they could be killed";
