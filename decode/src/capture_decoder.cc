@@ -43,6 +43,13 @@ std::optional<WhiteSource> WhiteFromDatabase(const RawInput& input, const std::f
   white.metadata = ReadWhiteImageMetadata(*choice.entry);
   white.summary = {
       {"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
+  // A damaged white image is left out of the choice, which may then fall on a farther zoom or focus: say so, since
+  // the damaged one may have been the match.
+  if (!database->skipped.empty()) {
+    spdlog::warn("{}: {} white image file(s) could not be read and were not considered, first {}", white_dir.string(),
+                 database->skipped.size(), database->skipped.front());
+    white.summary["skipped"] = database->skipped;
+  }
   return white;
 }
 

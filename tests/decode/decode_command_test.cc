@@ -137,6 +137,24 @@ TEST(DecodeCommand, NoMatchingWhiteImageFallsBackToTheCaptureWithAWarning) {
   EXPECT_FALSE(fs::exists(missing));
 }
 
+// A damaged white image is left out of the choice, which then falls on another one: the decode says so.
+TEST(DecodeCommand, ADamagedWhiteImageIsNamedWhenLeftOut) {
+  ASSERT_TRUE(fs::exists(Sample("mini-f01/capture.lfp"))) << testing::kMissingSample;
+  TempDir dir;
+  fs::copy(Sample("mini-f01/whites"), dir / "whites");
+  const std::string raw = testing::ReadBytes(dir / "whites" / "MOD_0001.RAW");
+  testing::WriteBytes(dir / "whites" / "MOD_0001.RAW", raw.substr(0, raw.size() / 2));
+  const fs::path out = dir / "out.h5";
+  const auto result = RunLfsp({"decode", Sample("mini-f01/capture.lfp").string(), "--white-images",
+                               (dir / "whites").string(), "--out", out.string()});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("could not be read and were not considered"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("MOD_0001"), std::string::npos) << result.out;
+  const nlohmann::json summary = nlohmann::json::parse(testing::ReadBytes(dir / "out.summary.json"));
+  ASSERT_EQ(summary["white_image"]["skipped"].size(), 1u);
+  EXPECT_NE(summary["white_image"]["name"], "MOD_0001");
+}
+
 TEST(DecodeCommand, BadOptionsExit2) {
   ASSERT_TRUE(fs::exists(Sample("mini-illum/capture.LFR"))) << testing::kMissingSample;
   TempDir dir;
