@@ -17,7 +17,8 @@ float Dot(const Colour& a, const Colour& b) { return a[0] * b[0] + a[1] * b[1] +
 Colour Minus(const Colour& a, const Colour& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 // RGB over its sum (held at 1e-3 only so that black does not divide by zero). Near black the chromaticity is mostly
-// noise, so a side that dark votes at random; the RGB share, which must agree, still decides for such pixels.
+// noise; since both shares must be under the bound, that noise can keep a pixel from moving but cannot move one that
+// the RGB share would keep.
 Colour Chromaticity(const Colour& c) {
   const float sum = std::max(c[0] + c[1] + c[2], 1e-3f);
   return {c[0] / sum, c[1] / sum, c[2] / sum};
