@@ -141,6 +141,11 @@ TEST(DecodeCommand, NoMatchingWhiteImageFallsBackToTheCaptureWithAWarning) {
 TEST(DecodeCommand, ADamagedWhiteImageIsNamedWhenLeftOut) {
   ASSERT_TRUE(fs::exists(Sample("mini-f01/capture.lfp"))) << testing::kMissingSample;
   TempDir dir;
+  // Whole, the folder's match is MOD_0001 (the capture's zoom and focus steps): the one damaged below.
+  ASSERT_EQ(
+      RunLfsp({"decode", Sample("mini-f01/capture.lfp").string(), "--out", (dir / "whole.h5").string()}).exit_status,
+      0);
+  EXPECT_EQ(nlohmann::json::parse(testing::ReadBytes(dir / "whole.summary.json"))["white_image"]["name"], "MOD_0001");
   fs::copy(Sample("mini-f01/whites"), dir / "whites");
   const std::string raw = testing::ReadBytes(dir / "whites" / "MOD_0001.RAW");
   testing::WriteBytes(dir / "whites" / "MOD_0001.RAW", raw.substr(0, raw.size() / 2));
