@@ -6,6 +6,8 @@
 //   the reference build (`make reference`: the commit in bench/REFERENCE) and with this build, one after the other
 //   in the same run, so the ratio holds on a noisy machine. The row also says whether this build wrote the same
 //   disparity bytes and the same segmentation content (decompressed) as the reference.
+// - `illum-pipeline-indexed-whites`: the same after `lfsp whites build` of the capture's white images (the decode
+//   then takes the lenslet grid stored for its white image instead of fitting it), against `illum-pipeline`.
 // - `illum-breakdown`: one run of each, taken apart per stage and per step inside decode, each step beside its floor
 //   (bytes it must touch over the measured bandwidth, or operations over the measured throughput). The table is
 //   written as Markdown to $TMPDIR/lfsp_bench_illum_breakdown.md (BENCHMARKS.md copies it).
@@ -323,6 +325,61 @@ LFSP_BENCH_CASE {
 
 LFSP_BENCH_CASE { return PipelineCase(true); }
 LFSP_BENCH_CASE { return PipelineCase(false); }
+
+// ---- the same capture with its white images indexed ----
+
+// The capture's folder (capture, whites/, ground_truth/) as hard links, so that a whites.json written there does not
+// reach the other rows' decodes of the shared capture.
+fs::path IndexedCaptureFolder() {
+  const fs::path source = Capture().parent_path();
+  const fs::path linked = fs::temp_directory_path() / "lfsp_bench_chain_indexed_capture";
+  fs::remove_all(linked);
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(source)) {
+    const fs::path target = linked / fs::relative(entry.path(), source);
+    if (entry.is_directory())
+      fs::create_directories(target);
+    else {
+      fs::create_directories(target.parent_path());
+      fs::create_hard_link(entry.path(), target);
+    }
+  }
+  return linked;
+}
+
+fs::path IndexedPipelineOut() { return fs::temp_directory_path() / "lfsp_bench_chain_indexed"; }
+
+// `illum-pipeline-indexed-whites`: the pipeline after `lfsp whites build` of the capture's whites/ folder (untimed:
+// a camera's white images are indexed once, and the lenslet grid fitted on each), so the decode takes the stored
+// grid instead of fitting one. Its outputs must be the plain row's.
+BenchCase IndexedWhitesCase() {
+  BenchCase c;
+  c.stage = "chain";
+  c.name = "illum-pipeline-indexed-whites";
+  c.input = "Illum 7728x5368 two-horses, simulated capture, defaults, after lfsp whites build";
+  c.target = "<= 4.0 s, <= 1.2 GB; decode <= 1.0 s";
+  c.baseline = "illum-pipeline";
+  c.repetitions = 3;
+  c.setup = [] { RunLfsp("whites build " + (IndexedCaptureFolder() / "whites").string()); };
+  c.run = [] {
+    const fs::path capture = fs::temp_directory_path() / "lfsp_bench_chain_indexed_capture" / Capture().filename();
+    fs::remove_all(IndexedPipelineOut());
+    RunLfsp("pipeline " + capture.string() + " --out " + IndexedPipelineOut().string());
+    return std::string();
+  };
+  c.score = [] {
+    const fs::path out = IndexedPipelineOut(), plain = PipelineOut(false);
+    const nlohmann::json summary = ReadJson(out / "summary.json");
+    std::error_code ec;
+    const std::string same = !fs::exists(plain / "disparity.pfm", ec)                                 ? "n/a"
+                             : FileBytes(out / "disparity.pfm") == FileBytes(plain / "disparity.pfm") ? "same"
+                                                                                                      : "DIFFERENT";
+    return PipelineFigures(out) + "; " + DecodeStageText(out) + "; grid from " +
+           summary["decode"]["grid_source"].get<std::string>() + "; disparity.pfm vs illum-pipeline's: " + same;
+  };
+  return c;
+}
+
+LFSP_BENCH_CASE { return IndexedWhitesCase(); }
 
 namespace {
 

@@ -22,6 +22,7 @@ struct WhiteSource {
   LytroMetadata metadata;
   nlohmann::json summary;  // name, path, why (and, when estimated, how many lenses it was averaged over)
   bool estimated = false;
+  std::optional<LensletGrid> grid;  // fitted on it by `lfsp whites build` and stored in the database
 };
 
 // The capture's white image from the database: by serial, zoom, focus. Without a match, nothing (and `why` says
@@ -43,6 +44,9 @@ std::optional<WhiteSource> WhiteFromDatabase(const RawInput& input, const std::f
   white.metadata = ReadWhiteImageMetadata(*choice.entry);
   white.summary = {
       {"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
+  // Fitted from the white image's own micro-lens description, as the decode would fit it; without one the decode
+  // fits from the capture's, which the stored grid did not see.
+  if (white.metadata.mla) white.grid = choice.entry->grid;
   // A damaged white image is left out of the choice, which may then fall on a farther zoom or focus: say so, since
   // the damaged one may have been the match.
   if (!database->skipped.empty()) {
@@ -131,15 +135,21 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   // The lenslet grid: given by the user, fitted on the white image (starting from its micro-lens description, or the
   // capture's), or found in the capture itself.
   GridEstimate estimate;
+  std::string grid_source = "given (" + OptionName("grid") + ")";
   std::optional<PreparedWhite> prepared;
   if (!options.grid.empty()) estimate = GivenGrid(options.grid, input, white ? &*white : nullptr);
   if (white) {
     // The prepared white image's grey version is what the grid is fitted on.
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
     const LytroMetadata& mla_source = white->metadata.mla ? white->metadata : metadata;
-    if (options.grid.empty())
+    if (options.grid.empty() && white->grid) {
+      estimate.grid = *white->grid;  // the database checked it lies on this white image's sensor
+      grid_source = "the white-image database (fitted on the white image by lfsp whites build)";
+    } else if (options.grid.empty()) {
       estimate =
           EstimateLensletGrid(prepared->grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
+      grid_source = "fitted on the white image";
+    }
   } else {
     if (options.grid.empty()) {
       try {
@@ -147,6 +157,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
       } catch (const Error& e) {
         throw Error(input.path.string() + ": " + e.what());
       }
+      grid_source = "found in the capture";
     }
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
@@ -156,9 +167,9 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   const std::string fit = options.grid.empty() ? fmt::format(", fit rms {:.4f} px", estimate.grid.rms_residual) : "";
-  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad{} ({})",
+  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad{} ({}; {})",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
-               estimate.grid.rotation, fit, estimate.grid.fit_method);
+               estimate.grid.rotation, fit, estimate.grid.fit_method, grid_source);
 
   CaptureDecodeResult result;
   DecodeReport report;
@@ -185,6 +196,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
                     {"camera", {{"model", metadata.camera_model}, {"serial", metadata.serial}}},
                     {"white_image", white->summary},
                     {"grid", estimate.grid.ToJson()},
+                    {"grid_source", grid_source},
                     {"light_field",
                      {{"nu", shape.nu},
                       {"nv", shape.nv},

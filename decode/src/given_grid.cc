@@ -70,6 +70,23 @@ LensletGrid GridFromLfToolboxModel(const nlohmann::json& model, int sensor_width
   return grid;
 }
 
+void RequireGridOnSensor(const LensletGrid& grid, int sensor_width, int sensor_height, const std::string& source) {
+  if (grid.sensor_width != sensor_width || grid.sensor_height != sensor_height)
+    throw Error(source + ": the grid is for a " + std::to_string(grid.sensor_width) + "x" +
+                std::to_string(grid.sensor_height) + " sensor, the capture's is " + std::to_string(sensor_width) + "x" +
+                std::to_string(sensor_height));
+  // The stored lens range must lie on this sensor, or slicing would read outside it: its end lenses in the first
+  // and last two rows (rows alternate in shift; the lattice is straight between them).
+  for (const int j : {0, 1, grid.rows - 2, grid.rows - 1})
+    for (const int i : {0, grid.columns - 1}) {
+      double x = 0.0, y = 0.0;
+      grid.Centre(i, j, x, y);
+      if (!grid.MicroImageOnSensor(x, y, sensor_width, sensor_height))
+        throw Error(source + ": lens (" + std::to_string(i) + ", " + std::to_string(j) +
+                    ") of the grid has its micro-image off the sensor");
+    }
+}
+
 LensletGrid ReadGivenGrid(const std::filesystem::path& path, int sensor_width, int sensor_height, double axis_x,
                           double axis_y) {
   const std::string source = path.string();
@@ -85,20 +102,7 @@ LensletGrid ReadGivenGrid(const std::filesystem::path& path, int sensor_width, i
                 ": holds no lenslet grid (neither lfsp's 'grid' with spacing_x nor LFToolbox's "
                 "LensletGridModel)");
   LensletGrid grid = LensletGrid::FromJson(*ours, source);
-  if (grid.sensor_width != sensor_width || grid.sensor_height != sensor_height)
-    throw Error(source + ": the grid is for a " + std::to_string(grid.sensor_width) + "x" +
-                std::to_string(grid.sensor_height) + " sensor, the capture's is " + std::to_string(sensor_width) + "x" +
-                std::to_string(sensor_height));
-  // The stored lens range must lie on this sensor, or slicing would read outside it: its end lenses in the first
-  // and last two rows (rows alternate in shift; the lattice is straight between them).
-  for (const int j : {0, 1, grid.rows - 2, grid.rows - 1})
-    for (const int i : {0, grid.columns - 1}) {
-      double x = 0.0, y = 0.0;
-      grid.Centre(i, j, x, y);
-      if (!grid.MicroImageOnSensor(x, y, sensor_width, sensor_height))
-        throw Error(source + ": lens (" + std::to_string(i) + ", " + std::to_string(j) +
-                    ") of the grid has its micro-image off the sensor");
-    }
+  RequireGridOnSensor(grid, sensor_width, sensor_height, source);
   grid.fit_method = "given: lfsp grid (" + source + ")";
   return grid;
 }

@@ -1,10 +1,12 @@
 #include "lfsp/decode/white_database.h"
 
+#include <spdlog/spdlog.h>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
+
 #include <sstream>
 
 #include "lfsp/core/error.h"
@@ -12,6 +14,7 @@
 #include "lfsp/core/json_fields.h"
 #include "lfsp/core/parallel_for.h"
 #include "lfsp/core/untrusted_json.h"
+#include "lfsp/decode/given_grid.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/decode/lytro_capture.h"
 
@@ -277,6 +280,25 @@ WhiteImageDatabase BuildWhiteImageDatabase(const fs::path& dir) {
   return db;
 }
 
+int FitWhiteImageGrids(WhiteImageDatabase& db) {
+  int fitted = 0;
+  for (WhiteImageEntry& e : db.entries) {
+    e.grid.reset();
+    if (e.dark) continue;
+    try {
+      const LytroMetadata metadata = ReadWhiteImageMetadata(e);
+      if (!metadata.mla) continue;  // a decode would fit it from the capture's description: nothing to store
+      const RawImage raw = ReadWhiteImageRaw(e);
+      const cv::Mat grey = WhiteImageToGrey(raw, metadata.RequireRawFormat(), metadata.source);
+      e.grid = EstimateLensletGrid(grey, GuessFromMetadata(metadata, raw.width, raw.height)).grid;
+      ++fitted;
+    } catch (const Error& error) {
+      spdlog::warn("{}: no lenslet grid stored ({})", e.raw_path.string(), error.what());
+    }
+  }
+  return fitted;
+}
+
 nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& db, const fs::path& base) {
   nlohmann::json entries = nlohmann::json::array();
   for (const WhiteImageEntry& e : db.entries) {
@@ -295,9 +317,13 @@ nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& db, const fs::pa
                         {"dark", e.dark}};
     if (!e.raw_member.empty()) j["raw_member"] = e.raw_member;
     if (!e.metadata_member.empty()) j["metadata_member"] = e.metadata_member;
+    if (e.grid) j["grid"] = e.grid->ToJson();
     entries.push_back(std::move(j));
   }
-  return {{"lfsp_white_image_database", 1}, {"entries", entries}, {"skipped", db.skipped}};
+  return {{"lfsp_white_image_database", 1},
+          {"grid_fit_revision", kWhiteGridFitRevision},
+          {"entries", entries},
+          {"skipped", db.skipped}};
 }
 
 void WriteWhiteImageDatabase(const WhiteImageDatabase& db, const fs::path& path) {
@@ -314,6 +340,9 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
   WhiteImageDatabase db;
   db.root = path.parent_path();
   const fs::path base = path.parent_path();
+  // Grids another revision of the fit made are not this one's: left out, so that a decode fits again.
+  const bool grids_current =
+      IntAt(doc, "grid_fit_revision", JsonSource(path.string())).value_or(0) == kWhiteGridFitRevision;
   for (std::size_t i = 0; i < doc["entries"].size(); ++i) {
     const nlohmann::json& j = doc["entries"][i];
     const std::string where = path.string() + " entry " + std::to_string(i);
@@ -342,6 +371,10 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
     }
     e.mean_level = NumberAt(j, "mean_level", where).value_or(0.0);
     e.dark = BoolAt(j, "dark", where).value_or(false);
+    if (j.contains("grid") && grids_current) {
+      e.grid = LensletGrid::FromJson(j["grid"], where + " grid");
+      RequireGridOnSensor(*e.grid, e.width, e.height, where + " grid");
+    }
     db.entries.push_back(std::move(e));
   }
   if (doc.contains("skipped") && doc["skipped"].is_array()) {
@@ -353,22 +386,68 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
   return db;
 }
 
-WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const fs::path& dir) {
+namespace {
+
+// Whether `dir`/whites.json exists and is newer than every MOD_*, .RAW and data.C.* file under `dir`.
+bool HasFreshDatabase(const fs::path& dir) {
   const fs::path cache = dir / kWhiteDatabaseFileName;
   std::error_code ec;
-  if (fs::is_regular_file(cache, ec)) {
-    const auto cache_time = fs::last_write_time(cache, ec);
-    bool fresh = !ec;
-    for (auto it = fs::recursive_directory_iterator(dir, ec); fresh && !ec && it != fs::recursive_directory_iterator();
-         it.increment(ec)) {
-      if (it->is_regular_file(ec) &&
-          (IsModMetadata(it->path()) || IsArchive(it->path()) || Lower(it->path().extension().string()) == ".raw")) {
-        if (fs::last_write_time(it->path(), ec) > cache_time) fresh = false;
-      }
+  if (!fs::is_regular_file(cache, ec)) return false;
+  const auto cache_time = fs::last_write_time(cache, ec);
+  if (ec) return false;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_regular_file(ec) &&
+        (IsModMetadata(it->path()) || IsArchive(it->path()) || Lower(it->path().extension().string()) == ".raw")) {
+      if (fs::last_write_time(it->path(), ec) > cache_time) return false;
     }
-    if (fresh) return ReadWhiteImageDatabase(cache);
   }
-  return BuildWhiteImageDatabase(dir);
+  return !ec;
+}
+
+std::string GridKey(const fs::path& raw_path, const std::string& member) {
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(raw_path, ec);
+  return (ec ? raw_path.lexically_normal() : canonical).string() + "\n" + member;
+}
+
+// A database built on the fly for `db.root` takes the grids of the fresh databases `lfsp whites build` wrote in the
+// folders between its white images and the root (the usual layout: captures beside a whites/ folder that holds its
+// whites.json). Borrowing is only a shortcut, so a database that cannot be read is named in a warning and skipped.
+void AdoptStoredGrids(WhiteImageDatabase& db) {
+  std::map<std::string, LensletGrid> stored;
+  std::vector<fs::path> visited;
+  const fs::path root = db.root.lexically_normal();
+  for (const WhiteImageEntry& e : db.entries) {
+    for (fs::path folder = e.raw_path.parent_path().lexically_normal(); !folder.empty();
+         folder = folder.parent_path()) {
+      if (std::find(visited.begin(), visited.end(), folder) == visited.end()) {
+        visited.push_back(folder);
+        if (HasFreshDatabase(folder)) {
+          try {
+            for (const WhiteImageEntry& s : ReadWhiteImageDatabase(folder / kWhiteDatabaseFileName).entries)
+              if (s.grid) stored.emplace(GridKey(s.raw_path, s.raw_member), *s.grid);
+          } catch (const Error& error) {
+            spdlog::warn("{}; its lenslet grids are not used", error.what());
+          }
+        }
+      }
+      if (folder == root || folder == folder.parent_path()) break;
+    }
+  }
+  for (WhiteImageEntry& e : db.entries) {
+    const auto found = stored.find(GridKey(e.raw_path, e.raw_member));
+    if (found != stored.end()) e.grid = found->second;
+  }
+}
+
+}  // namespace
+
+WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const fs::path& dir) {
+  if (HasFreshDatabase(dir)) return ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName);
+  WhiteImageDatabase db = BuildWhiteImageDatabase(dir);
+  AdoptStoredGrids(db);
+  return db;
 }
 
 WhiteImageChoice SelectWhiteImage(const WhiteImageDatabase& db, const LytroMetadata& capture) {

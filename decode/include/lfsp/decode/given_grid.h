@@ -34,4 +34,8 @@ LensletGrid GridFromLfToolboxModel(const nlohmann::json& model, int sensor_width
 LensletGrid ReadGivenGrid(const std::filesystem::path& path, int sensor_width, int sensor_height, double axis_x,
                           double axis_y);
 
+// lfsp::Error naming `source` unless `grid` is for a sensor_width x sensor_height sensor and its stored lens range
+// has every micro-image on it (slicing would read outside the sensor otherwise): what any stored grid must pass.
+void RequireGridOnSensor(const LensletGrid& grid, int sensor_width, int sensor_height, const std::string& source);
+
 }  // namespace lfsp::decode

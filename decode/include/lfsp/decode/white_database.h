@@ -6,14 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "lfsp/decode/lenslet_grid.h"
 #include "lfsp/decode/lytro_metadata.h"
 #include "lfsp/decode/raw_packing.h"
 
 namespace lfsp::decode {
 
-// The white-image database of issue 4 (like LFToolbox's LFUtilProcessWhiteImages + LFSelectFromDatabase, without
-// the grid model): an index of a camera's white ("modulation") images by serial, zoom step, focus step and
-// exposure, built from MOD_####.RAW + .TXT pairs and/or calibration archives data.C.N, cached as JSON.
+// The white-image database of issue 4 (like LFToolbox's LFUtilProcessWhiteImages + LFSelectFromDatabase): an index
+// of a camera's white ("modulation") images by serial, zoom step, focus step and exposure, built from MOD_####.RAW +
+// .TXT pairs and/or calibration archives data.C.N, cached as JSON, with the lenslet grid fitted on each white image
+// when `lfsp whites build` fitted it (so that decoding many captures fits each grid once, issue 46).
 
 struct WhiteImageEntry {
   // Where the raw image lives: a .RAW file, or a member of a calibration archive.
@@ -33,6 +35,10 @@ struct WhiteImageEntry {
   RawPacking packing = RawPacking::kBits10Illum;
   double mean_level = 0.0;  // mean of (raw - black) / (white - black) over the image
   bool dark = false;        // a dark frame (tagged darkFrame, or mean level < kDarkMeanLevel): never selected
+  // The lattice FitWhiteImageGrids fitted on this white image, exactly as a decode would fit it; a decode that picks
+  // this white image uses it instead of fitting again. None when not fitted: a database built on the fly by a decode,
+  // a dark frame, a white image without a micro-lens description, a fit that failed.
+  std::optional<LensletGrid> grid;
 };
 
 struct WhiteImageDatabase {
@@ -50,7 +56,20 @@ inline constexpr double kDarkMeanLevel = 0.1;
 // all is an lfsp::Error.
 WhiteImageDatabase BuildWhiteImageDatabase(const std::filesystem::path& dir);
 
-// The JSON cache, written atomically (paths stored relative to the database file's folder).
+// Fits the lenslet grid of every white image that is not dark and carries its micro-lens description
+// (EstimateLensletGrid on WhiteImageToGrey, from GuessFromMetadata of its own metadata: what DecodeCaptureFile does
+// with it), one white image at a time. A white image whose fit fails keeps no grid and is named in a warning. Returns
+// how many grids were fitted. About 0.8 s per full-size Illum white image.
+int FitWhiteImageGrids(WhiteImageDatabase& database);
+
+// What the stored grids were fitted with. Bump it whenever EstimateLensletGrid, WhiteImageToGrey or
+// GuessFromMetadata change what they return for the same white image: a database whose grids carry another revision
+// has them ignored (and a decode fits again), so a stale grid is never used.
+inline constexpr int kWhiteGridFitRevision = 1;
+
+// The JSON cache, written atomically (paths stored relative to the database file's folder). Grids are read only
+// when the file's grid_fit_revision is kWhiteGridFitRevision; a grid that is malformed or not for its entry's
+// sensor is an lfsp::Error naming the file and the entry.
 nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& database, const std::filesystem::path& base);
 void WriteWhiteImageDatabase(const WhiteImageDatabase& database, const std::filesystem::path& path);
 WhiteImageDatabase ReadWhiteImageDatabase(const std::filesystem::path& path);
