@@ -35,6 +35,23 @@ bool IsModMetadata(const fs::path& path) {
 
 bool IsArchive(const fs::path& path) { return Lower(path.filename().string()).rfind("data.c.", 0) == 0; }
 
+// Whether `dir`/whites.json exists and is newer than every MOD_*, .RAW and data.C.* file under `dir`.
+bool HasFreshDatabase(const fs::path& dir) {
+  const fs::path cache = dir / kWhiteDatabaseFileName;
+  std::error_code ec;
+  if (!fs::is_regular_file(cache, ec)) return false;
+  const auto cache_time = fs::last_write_time(cache, ec);
+  if (ec) return false;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_regular_file(ec) &&
+        (IsModMetadata(it->path()) || IsArchive(it->path()) || Lower(it->path().extension().string()) == ".raw")) {
+      if (fs::last_write_time(it->path(), ec) > cache_time) return false;
+    }
+  }
+  return !ec;
+}
+
 // The base name of an archived member: "C:\T1CALIB\MOD_0000.RAW" -> "MOD_0000.RAW".
 std::string MemberBaseName(const std::string& member) {
   const std::size_t cut = member.find_last_of("\\/");
@@ -232,6 +249,49 @@ void IndexArchives(const std::vector<fs::path>& archives, WhiteImageDatabase& db
   }
 }
 
+void TakeIndexedFolder(const fs::path& folder, WhiteImageDatabase& db);
+
+// Adds every white image under `dir` (recursively) to `db`: MOD_*.TXT + .RAW pairs, calibration archives, and the
+// entries of sub-folders with a fresh whites.json of their own.
+void IndexFolder(const fs::path& dir, WhiteImageDatabase& db) {
+  std::error_code ec;
+  std::vector<fs::path> pairs;
+  std::vector<fs::path> archives;
+  std::vector<fs::path> indexed;  // sub-folders whose own fresh whites.json is taken as it is
+  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_directory(ec) && HasFreshDatabase(it->path())) {
+      indexed.push_back(it->path());
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file(ec)) continue;
+    if (IsModMetadata(it->path())) pairs.push_back(it->path());
+    if (IsArchive(it->path())) archives.push_back(it->path());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::sort(archives.begin(), archives.end());
+  std::sort(indexed.begin(), indexed.end());
+  IndexPairs(pairs, db);
+  IndexArchives(archives, db);
+  for (const fs::path& folder : indexed) TakeIndexedFolder(folder, db);
+}
+
+// A sub-folder that `lfsp whites build` indexed, its whites.json newer than its white images: its entries (and the
+// lenslet grids fitted on them) are taken as they are rather than measured again. That is what a decode searching
+// the capture's folder meets when the whites/ folder beside the captures was indexed. A database that cannot be read
+// is named in a warning and the folder indexed afresh.
+void TakeIndexedFolder(const fs::path& folder, WhiteImageDatabase& db) {
+  try {
+    WhiteImageDatabase sub = ReadWhiteImageDatabase(folder / kWhiteDatabaseFileName);
+    std::move(sub.entries.begin(), sub.entries.end(), std::back_inserter(db.entries));
+    std::move(sub.skipped.begin(), sub.skipped.end(), std::back_inserter(db.skipped));
+  } catch (const Error& error) {
+    spdlog::warn("{}; indexing {} afresh", error.what(), folder.string());
+    IndexFolder(folder, db);
+  }
+}
+
 void SortEntries(std::vector<WhiteImageEntry>& entries) {
   std::sort(entries.begin(), entries.end(), [](const WhiteImageEntry& a, const WhiteImageEntry& b) {
     return std::tie(a.serial, a.zoom_step, a.focus_step, a.exposure_duration, a.name) <
@@ -259,18 +319,7 @@ WhiteImageDatabase BuildWhiteImageDatabase(const fs::path& dir) {
   if (!fs::is_directory(dir, ec)) throw Error(dir.string() + ": not a folder of white images");
   WhiteImageDatabase db;
   db.root = dir;
-  std::vector<fs::path> pairs;
-  std::vector<fs::path> archives;
-  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
-       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (!it->is_regular_file(ec)) continue;
-    if (IsModMetadata(it->path())) pairs.push_back(it->path());
-    if (IsArchive(it->path())) archives.push_back(it->path());
-  }
-  std::sort(pairs.begin(), pairs.end());
-  std::sort(archives.begin(), archives.end());
-  IndexPairs(pairs, db);
-  IndexArchives(archives, db);
+  IndexFolder(dir, db);
   if (db.entries.empty()) {
     std::string why = dir.string() + ": no white image found (looked for MOD_*.TXT + .RAW pairs and data.C.* archives)";
     if (!db.skipped.empty()) why += "; first problem: " + db.skipped.front();
@@ -386,68 +435,9 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
   return db;
 }
 
-namespace {
-
-// Whether `dir`/whites.json exists and is newer than every MOD_*, .RAW and data.C.* file under `dir`.
-bool HasFreshDatabase(const fs::path& dir) {
-  const fs::path cache = dir / kWhiteDatabaseFileName;
-  std::error_code ec;
-  if (!fs::is_regular_file(cache, ec)) return false;
-  const auto cache_time = fs::last_write_time(cache, ec);
-  if (ec) return false;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
-    if (it->is_regular_file(ec) &&
-        (IsModMetadata(it->path()) || IsArchive(it->path()) || Lower(it->path().extension().string()) == ".raw")) {
-      if (fs::last_write_time(it->path(), ec) > cache_time) return false;
-    }
-  }
-  return !ec;
-}
-
-std::string GridKey(const fs::path& raw_path, const std::string& member) {
-  std::error_code ec;
-  const fs::path canonical = fs::weakly_canonical(raw_path, ec);
-  return (ec ? raw_path.lexically_normal() : canonical).string() + "\n" + member;
-}
-
-// A database built on the fly for `db.root` takes the grids of the fresh databases `lfsp whites build` wrote in the
-// folders between its white images and the root (the usual layout: captures beside a whites/ folder that holds its
-// whites.json). Borrowing is only a shortcut, so a database that cannot be read is named in a warning and skipped.
-void AdoptStoredGrids(WhiteImageDatabase& db) {
-  std::map<std::string, LensletGrid> stored;
-  std::vector<fs::path> visited;
-  const fs::path root = db.root.lexically_normal();
-  for (const WhiteImageEntry& e : db.entries) {
-    for (fs::path folder = e.raw_path.parent_path().lexically_normal(); !folder.empty();
-         folder = folder.parent_path()) {
-      if (std::find(visited.begin(), visited.end(), folder) == visited.end()) {
-        visited.push_back(folder);
-        if (HasFreshDatabase(folder)) {
-          try {
-            for (const WhiteImageEntry& s : ReadWhiteImageDatabase(folder / kWhiteDatabaseFileName).entries)
-              if (s.grid) stored.emplace(GridKey(s.raw_path, s.raw_member), *s.grid);
-          } catch (const Error& error) {
-            spdlog::warn("{}; its lenslet grids are not used", error.what());
-          }
-        }
-      }
-      if (folder == root || folder == folder.parent_path()) break;
-    }
-  }
-  for (WhiteImageEntry& e : db.entries) {
-    const auto found = stored.find(GridKey(e.raw_path, e.raw_member));
-    if (found != stored.end()) e.grid = found->second;
-  }
-}
-
-}  // namespace
-
 WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const fs::path& dir) {
   if (HasFreshDatabase(dir)) return ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName);
-  WhiteImageDatabase db = BuildWhiteImageDatabase(dir);
-  AdoptStoredGrids(db);
-  return db;
+  return BuildWhiteImageDatabase(dir);
 }
 
 WhiteImageChoice SelectWhiteImage(const WhiteImageDatabase& db, const LytroMetadata& capture) {

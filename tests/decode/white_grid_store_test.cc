@@ -94,6 +94,39 @@ TEST(WhiteGridStore, AnotherFitRevisionIsIgnoredAndABadGridIsAnError) {
   EXPECT_NE(ErrorOf([&] { ReadWhiteImageDatabase(file); }).find("micro-image off the sensor"), std::string::npos);
 }
 
+TEST(WhiteGridStore, AnIndexedSubFolderIsTakenWholeAndABrokenOneIndexedAfresh) {
+  TempDir dir;
+  CopyMiniF01(dir.path());
+  const WhiteImageDatabase measured = BuildWhiteImageDatabase(dir.path());  // searched as a decode searches
+  WhiteImageDatabase db = BuildWhiteImageDatabase(dir / "whites");
+  ASSERT_GT(FitWhiteImageGrids(db), 0);
+  const fs::path file = dir / "whites" / kWhiteDatabaseFileName;
+  WriteWhiteImageDatabase(db, file);
+
+  // Taken from whites/whites.json: the grids come along, and so does a (tampered) mean level, which shows that the
+  // white images were not measured again.
+  nlohmann::json doc = nlohmann::json::parse(ReadBytes(file));
+  doc["entries"][0]["mean_level"] = 0.123;
+  WriteBytes(file, doc.dump());
+  const WhiteImageDatabase taken = LoadOrBuildWhiteImageDatabase(dir.path());
+  ASSERT_EQ(taken.entries.size(), measured.entries.size());
+  bool tampered = false;
+  for (const WhiteImageEntry& e : taken.entries) {
+    EXPECT_EQ(e.grid.has_value(), !e.dark) << e.name;
+    tampered = tampered || e.mean_level == 0.123;
+  }
+  EXPECT_TRUE(tampered);
+
+  // A broken one: the folder is indexed afresh, as if it had none.
+  WriteBytes(file, "{\"lfsp_white_image_database\": 1, \"entries\": [{\"name\": 3}]}");
+  const WhiteImageDatabase afresh = LoadOrBuildWhiteImageDatabase(dir.path());
+  ASSERT_EQ(afresh.entries.size(), measured.entries.size());
+  for (std::size_t i = 0; i < afresh.entries.size(); ++i) {
+    EXPECT_FALSE(afresh.entries[i].grid.has_value());
+    EXPECT_EQ(afresh.entries[i].mean_level, measured.entries[i].mean_level);
+  }
+}
+
 // Bytes, not values: the stored grid must give the fitted grid's views exactly.
 bool SameLightField(const fs::path& a, const fs::path& b) {
   const Bundle x = ReadBundle(a), y = ReadBundle(b);
