@@ -1,12 +1,12 @@
 #include "lfsp/decode/white_database.h"
 
 #include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
-
 #include <sstream>
 
 #include "lfsp/core/error.h"
