@@ -59,7 +59,7 @@ WhiteImageDatabase BuildWhiteImageDatabase(const std::filesystem::path& dir);
 // Fits the lenslet grid of every white image that is not dark and carries its micro-lens description
 // (EstimateLensletGrid on WhiteImageToGrey, from GuessFromMetadata of its own metadata: what DecodeCaptureFile does
 // with it), one white image at a time. A white image whose fit fails keeps no grid and is named in a warning. Returns
-// how many grids were fitted. About 0.8 s per full-size Illum white image.
+// how many grids were fitted. About 0.5 s per full-size Illum white image.
 int FitWhiteImageGrids(WhiteImageDatabase& database);
 
 // What the stored grids were fitted with. Bump it whenever EstimateLensletGrid, WhiteImageToGrey or
