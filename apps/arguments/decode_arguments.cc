@@ -7,7 +7,9 @@ namespace lfsp::cli {
 void AddDecodeArguments(CLI::App* command, DecodeArguments& arguments) {
   command->add_option("--white-images", arguments.white_images,
                       "Folder of white images, MOD_*.RAW + .TXT or calibration archives data.C.* (default: the "
-                      "capture's folder, searched recursively, so its whites/ sub-folder is found)");
+                      "capture's folder, searched recursively, so its whites/ sub-folder is found); a whites.json "
+                      "there (lfsp whites build) spares reading again the white images it indexed, and holds their "
+                      "lenslet grids");
   command->add_flag("--no-white-image", arguments.no_white_image,
                     "Estimate the white image (micro-image vignetting) and the lenslet grid from the capture itself "
                     "instead of looking one up (automatic, with a warning, when no white image matches; always for "
@@ -45,8 +47,8 @@ void AddGridFileOption(CLI::App* command, std::string& grid_file) {
   command
       ->add_option("--grid", grid_file,
                    "Use this lenslet grid instead of fitting one: lfsp's grid.json (lfsp grid --out) or LFToolbox's "
-                   "LensletGridModel (a CalInfo.json or a white image's .grid.json) (default: fitted on the white "
-                   "image, or found in the capture)")
+                   "LensletGridModel (a CalInfo.json or a white image's .grid.json) (default: the grid lfsp whites "
+                   "build stored for the white image, else fitted on it, or found in the capture)")
       ->check(CLI::ExistingFile);
 }
 

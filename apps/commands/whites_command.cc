@@ -97,7 +97,7 @@ void AddWhitesCommand(CLI::App& app) {
   build->add_option("--out", options->out, "Database file (default: DIR/whites.json)");
   build->add_flag("--json", options->json, "Print the database as JSON instead of a table (default: table)");
   build->add_flag("--no-grids", options->no_grids,
-                  "Do not fit the white images' lenslet grids (about 0.5 s per full-size Illum white image); decode "
+                  "Do not fit the white images' lenslet grids (0.5-1 s per full-size Illum white image); decode "
                   "then fits the grid on every capture (default: fitted)");
   build->callback([options] { RunBuild(*options); });
 

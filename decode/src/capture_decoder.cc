@@ -45,8 +45,17 @@ std::optional<WhiteSource> WhiteFromDatabase(const RawInput& input, const std::f
   white.summary = {
       {"name", choice.entry->name}, {"path", choice.entry->raw_path.string()}, {"why", choice.explanation}};
   // Fitted from the white image's own micro-lens description, as the decode would fit it; without one the decode
-  // fits from the capture's, which the stored grid did not see.
-  if (white.metadata.mla) white.grid = choice.entry->grid;
+  // fits from the capture's, which the stored grid did not see. A white image changed since it was indexed is not
+  // the one the grid was fitted on.
+  if (white.metadata.mla && choice.entry->grid) {
+    if (StillAsIndexed(*choice.entry))
+      white.grid = choice.entry->grid;
+    else
+      spdlog::warn(
+          "{}: changed since its white-image database was built; fitting its lenslet grid again (lfsp whites "
+          "build {} stores it anew)",
+          choice.entry->raw_path.string(), choice.entry->raw_path.parent_path().string());
+  }
   // A damaged white image is left out of the choice, which may then fall on a farther zoom or focus: say so, since
   // the damaged one may have been the match.
   if (!database->skipped.empty()) {
@@ -134,21 +143,24 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
 
   // The lenslet grid: given by the user, fitted on the white image (starting from its micro-lens description, or the
   // capture's), or found in the capture itself.
+  // grid_source says which in the summary: given | database (stored by lfsp whites build) | fitted | capture.
   GridEstimate estimate;
-  std::string grid_source = "given (" + OptionName("grid") + ")";
+  std::string grid_source;
   std::optional<PreparedWhite> prepared;
-  if (!options.grid.empty()) estimate = GivenGrid(options.grid, input, white ? &*white : nullptr);
+  if (!options.grid.empty()) {
+    estimate = GivenGrid(options.grid, input, white ? &*white : nullptr);
+    grid_source = "given";
+  }
   if (white) {
     // The prepared white image's grey version is what the grid is fitted on.
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
     const LytroMetadata& mla_source = white->metadata.mla ? white->metadata : metadata;
     if (options.grid.empty() && white->grid) {
       estimate.grid = *white->grid;  // the database checked it lies on this white image's sensor
-      grid_source = "the white-image database (fitted on the white image by lfsp whites build)";
+      grid_source = "database";
     } else if (options.grid.empty()) {
-      estimate =
-          EstimateLensletGrid(prepared->grey, GuessFromMetadata(mla_source, white->raw.width, white->raw.height));
-      grid_source = "fitted on the white image";
+      estimate = FitGridOnWhiteImage(prepared->grey, mla_source);
+      grid_source = "fitted";
     }
   } else {
     if (options.grid.empty()) {
@@ -157,7 +169,7 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
       } catch (const Error& e) {
         throw Error(input.path.string() + ": " + e.what());
       }
-      grid_source = "found in the capture";
+      grid_source = "capture";
     }
     white = WhiteFromCapture(input, estimate.grid, estimate_why);
     prepared = PrepareWhite(white->raw, white->metadata, options.decode.colour, options.decode.min_white);
@@ -167,9 +179,10 @@ CaptureDecodeResult DecodeCaptureFile(const std::filesystem::path& capture_path,
   progress.Tick();
   spdlog::info("white image: {}", white->summary["why"].get<std::string>());
   const std::string fit = options.grid.empty() ? fmt::format(", fit rms {:.4f} px", estimate.grid.rms_residual) : "";
-  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad{} ({}; {})",
+  spdlog::info("lenslet grid: {} x {} lenses, spacing {:.4f} x {:.4f} px, rotation {:.6f} rad{} ({}{})",
                estimate.grid.columns, estimate.grid.rows, estimate.grid.spacing_x, estimate.grid.spacing_y,
-               estimate.grid.rotation, fit, estimate.grid.fit_method, grid_source);
+               estimate.grid.rotation, fit, estimate.grid.fit_method,
+               grid_source == "database" ? ", stored by lfsp whites build" : "");
 
   CaptureDecodeResult result;
   DecodeReport report;

@@ -1,5 +1,6 @@
 #include "lfsp/decode/given_grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -75,6 +76,17 @@ void RequireGridOnSensor(const LensletGrid& grid, int sensor_width, int sensor_h
     throw Error(source + ": the grid is for a " + std::to_string(grid.sensor_width) + "x" +
                 std::to_string(grid.sensor_height) + " sensor, the capture's is " + std::to_string(sensor_width) + "x" +
                 std::to_string(sensor_height));
+  // A hexagonal lattice's rows are sqrt(3)/2 of its spacing apart (0.8665 on both Lytro cameras), at least 8 lenses
+  // fit across the sensor (as a fit needs), and the lenses cover most of it: a grid that lies about its shape would
+  // ask the decode for views of any size (issue 15: memory bounded by the real input).
+  const double rows_over_spacing = grid.spacing_y / grid.spacing_x;
+  if (!(rows_over_spacing > 0.7 && rows_over_spacing < 1.05) ||
+      !(grid.spacing_x * 8.0 <= std::min(sensor_width, sensor_height)) ||
+      !(grid.columns * grid.spacing_x >= 0.5 * sensor_width && grid.rows * grid.spacing_y >= 0.5 * sensor_height))
+    throw Error(source + ": not a lenslet grid of this sensor (spacing " + std::to_string(grid.spacing_x) + " x " +
+                std::to_string(grid.spacing_y) + " px, " + std::to_string(grid.columns) + " x " +
+                std::to_string(grid.rows) + " lenses: rows must be 0.7-1.05 of the spacing apart, at least 8 lenses " +
+                "fit across, and the lenses cover half the sensor each way)");
   // The stored lens range must lie on this sensor, or slicing would read outside it: its end lenses in the first
   // and last two rows (rows alternate in shift; the lattice is straight between them).
   for (const int j : {0, 1, grid.rows - 2, grid.rows - 1})

@@ -258,4 +258,8 @@ GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& gue
   return estimate;
 }
 
+GridEstimate FitGridOnWhiteImage(const cv::Mat& grey_white, const LytroMetadata& mla_source) {
+  return EstimateLensletGrid(grey_white, GuessFromMetadata(mla_source, grey_white.cols, grey_white.rows));
+}
+
 }  // namespace lfsp::decode

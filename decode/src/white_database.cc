@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -140,7 +141,29 @@ struct IndexedPair {
   std::string skipped;
 };
 
-IndexedPair IndexPair(const fs::path& txt) {
+// Entries of databases met while indexing, by their raw file (and member): reused while their files are unchanged.
+using StoredEntries = std::map<std::string, WhiteImageEntry>;
+
+std::string EntryKey(const fs::path& raw_path, const std::string& member) {
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(raw_path, ec);
+  return (ec ? raw_path.lexically_normal() : canonical).string() + '\n' + member;
+}
+
+// The entry a database met under the folder holds for this pair, if it measured these very files.
+std::optional<WhiteImageEntry> Reusable(const StoredEntries* stored, const fs::path& raw, const fs::path& txt) {
+  if (stored == nullptr) return std::nullopt;
+  const auto found = stored->find(EntryKey(raw, ""));
+  if (found == stored->end() || EntryKey(found->second.metadata_path, "") != EntryKey(txt, "") ||
+      !StillAsIndexed(found->second))
+    return std::nullopt;
+  WhiteImageEntry e = found->second;
+  e.raw_path = raw;
+  e.metadata_path = txt;
+  return e;
+}
+
+IndexedPair IndexPair(const fs::path& txt, const StoredEntries* stored) {
   fs::path raw;
   for (const char* ext : {".RAW", ".raw"}) {
     fs::path candidate = txt;
@@ -149,13 +172,18 @@ IndexedPair IndexPair(const fs::path& txt) {
     if (fs::is_regular_file(candidate, ec)) raw = candidate;
   }
   if (raw.empty()) return {std::nullopt, txt.string() + ": no .RAW beside it"};
+  if (std::optional<WhiteImageEntry> reused = Reusable(stored, raw, txt)) return {std::move(reused), {}};
   try {
+    // Stamped before reading: a file that changes while it is read is not taken for the one measured.
+    const std::optional<FileStamp> raw_stamp = StampOf(raw), metadata_stamp = StampOf(txt);
     const LytroMetadata md = ReadMetadataFile(txt);
     WhiteImageEntry e = EntryFromMetadata(md, txt.string());
     e.raw_path = raw;
     e.metadata_path = txt;
     e.name = txt.stem().string();
     SetMeanLevel(e, MeanLevelOfRawFile(e, md.RequireRawFormat()));
+    e.raw_stamp = raw_stamp;
+    e.metadata_stamp = metadata_stamp;
     return {std::move(e), {}};
   } catch (const Error& error) {
     return {std::nullopt, error.what()};
@@ -165,11 +193,12 @@ IndexedPair IndexPair(const fs::path& txt) {
 // Every pair, read and measured in parallel (each white RAW is streamed for its mean level; the six full-size Illum
 // whites of a simulated set took 0.51 s one after another unpacked whole, 0.38-0.45 s in parallel), then added in
 // the pairs' order.
-void IndexPairs(const std::vector<fs::path>& pairs, WhiteImageDatabase& db) {
+void IndexPairs(const std::vector<fs::path>& pairs, const StoredEntries* stored, WhiteImageDatabase& db) {
   std::vector<IndexedPair> indexed(pairs.size());
   // Anything but lfsp::Error (which skips the pair) is rethrown as it was once every pair is done.
-  ParallelFor(static_cast<int>(pairs.size()),
-              [&](int i) { indexed[static_cast<std::size_t>(i)] = IndexPair(pairs[static_cast<std::size_t>(i)]); });
+  ParallelFor(static_cast<int>(pairs.size()), [&](int i) {
+    indexed[static_cast<std::size_t>(i)] = IndexPair(pairs[static_cast<std::size_t>(i)], stored);
+  });
   for (IndexedPair& pair : indexed) {
     if (pair.entry)
       db.entries.push_back(std::move(*pair.entry));
@@ -232,6 +261,8 @@ void IndexArchives(const std::vector<fs::path>& archives, WhiteImageDatabase& db
       e.raw_path = raw->second.archive;
       e.raw_member = raw->second.name;
       e.name = stem;
+      e.raw_stamp = StampOf(e.raw_path);
+      e.metadata_stamp = StampOf(e.metadata_path);
       if (!open_archive || open_path != e.raw_path) {
         open_archive.reset();  // release the previous volume before reading the next
         open_archive = OpenLytroCapture(e.raw_path);
@@ -249,54 +280,71 @@ void IndexArchives(const std::vector<fs::path>& archives, WhiteImageDatabase& db
   }
 }
 
-void TakeIndexedFolder(const fs::path& folder, WhiteImageDatabase& db);
-
-// Adds every white image under `dir` (recursively) to `db`: MOD_*.TXT + .RAW pairs, calibration archives, and the
-// entries of sub-folders with a fresh whites.json of their own.
-void IndexFolder(const fs::path& dir, WhiteImageDatabase& db) {
-  std::error_code ec;
-  std::vector<fs::path> pairs;
-  std::vector<fs::path> archives;
-  std::vector<fs::path> indexed;  // sub-folders whose own fresh whites.json is taken as it is
-  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
-       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (it->is_directory(ec) && HasFreshDatabase(it->path())) {
-      indexed.push_back(it->path());
-      it.disable_recursion_pending();
-      continue;
-    }
-    if (!it->is_regular_file(ec)) continue;
-    if (IsModMetadata(it->path())) pairs.push_back(it->path());
-    if (IsArchive(it->path())) archives.push_back(it->path());
-  }
-  std::sort(pairs.begin(), pairs.end());
-  std::sort(archives.begin(), archives.end());
-  std::sort(indexed.begin(), indexed.end());
-  IndexPairs(pairs, db);
-  IndexArchives(archives, db);
-  for (const fs::path& folder : indexed) TakeIndexedFolder(folder, db);
-}
-
-// A sub-folder that `lfsp whites build` indexed, its whites.json newer than its white images: its entries (and the
-// lenslet grids fitted on them) are taken as they are rather than measured again. That is what a decode searching
-// the capture's folder meets when the whites/ folder beside the captures was indexed. A database that cannot be read
-// is named in a warning and the folder indexed afresh.
-void TakeIndexedFolder(const fs::path& folder, WhiteImageDatabase& db) {
-  try {
-    WhiteImageDatabase sub = ReadWhiteImageDatabase(folder / kWhiteDatabaseFileName);
-    std::move(sub.entries.begin(), sub.entries.end(), std::back_inserter(db.entries));
-    std::move(sub.skipped.begin(), sub.skipped.end(), std::back_inserter(db.skipped));
-  } catch (const Error& error) {
-    spdlog::warn("{}; indexing {} afresh", error.what(), folder.string());
-    IndexFolder(folder, db);
-  }
-}
-
 void SortEntries(std::vector<WhiteImageEntry>& entries) {
   std::sort(entries.begin(), entries.end(), [](const WhiteImageEntry& a, const WhiteImageEntry& b) {
     return std::tie(a.serial, a.zoom_step, a.focus_step, a.exposure_duration, a.name) <
            std::tie(b.serial, b.zoom_step, b.focus_step, b.exposure_duration, b.name);
   });
+}
+
+// What a folder holds, found recursively (symbolic links to folders are not followed, so a link loop ends).
+struct FolderContents {
+  std::vector<fs::path> pairs;      // MOD_*.TXT
+  std::vector<fs::path> archives;   // data.C.*
+  std::vector<fs::path> databases;  // whites.json
+};
+
+FolderContents ScanFolder(const fs::path& dir) {
+  FolderContents found;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    if (IsModMetadata(it->path())) found.pairs.push_back(it->path());
+    if (IsArchive(it->path())) found.archives.push_back(it->path());
+    if (it->path().filename() == kWhiteDatabaseFileName) found.databases.push_back(it->path());
+  }
+  std::sort(found.pairs.begin(), found.pairs.end());
+  std::sort(found.archives.begin(), found.archives.end());
+  std::sort(found.databases.begin(), found.databases.end());
+  return found;
+}
+
+// The stamped entries of the databases found: only a cache, so one that cannot be read is named in a warning and
+// left out.
+StoredEntries ReadStoredEntries(const std::vector<fs::path>& databases) {
+  StoredEntries stored;
+  for (const fs::path& path : databases) {
+    try {
+      for (WhiteImageEntry& e : ReadWhiteImageDatabase(path).entries) {
+        if (e.raw_member.empty() && e.raw_stamp && e.metadata_stamp)
+          stored.emplace(EntryKey(e.raw_path, ""), std::move(e));
+      }
+    } catch (const Error& error) {
+      spdlog::warn("{}; its white images are measured again (lfsp whites build rewrites it)", error.what());
+    }
+  }
+  return stored;
+}
+
+// The database of `dir`; with `reuse`, pairs that a whites.json under `dir` measured in their present state are taken
+// from it rather than measured again.
+WhiteImageDatabase BuildDatabase(const fs::path& dir, bool reuse) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw Error(dir.string() + ": not a folder of white images");
+  WhiteImageDatabase db;
+  db.root = dir;
+  const FolderContents found = ScanFolder(dir);
+  const StoredEntries stored = reuse ? ReadStoredEntries(found.databases) : StoredEntries{};
+  IndexPairs(found.pairs, reuse ? &stored : nullptr, db);
+  IndexArchives(found.archives, db);
+  if (db.entries.empty()) {
+    std::string why = dir.string() + ": no white image found (looked for MOD_*.TXT + .RAW pairs and data.C.* archives)";
+    if (!db.skipped.empty()) why += "; first problem: " + db.skipped.front();
+    throw Error(why);
+  }
+  SortEntries(db.entries);
+  return db;
 }
 
 fs::path Relative(const fs::path& path, const fs::path& base) {
@@ -312,22 +360,57 @@ std::string Format(double value) {
   return out.str();
 }
 
+nlohmann::json StampJson(const FileStamp& stamp) {
+  return {{"bytes", stamp.bytes}, {"modified_ns", stamp.modified_ns}};
+}
+
+FileStamp StampFromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object() || !j.contains("bytes") || !j["bytes"].is_number_unsigned() || !j.contains("modified_ns") ||
+      !j["modified_ns"].is_number_integer())
+    throw Error(where + ": not a file stamp (bytes, modified_ns)");
+  return {j["bytes"].get<std::uintmax_t>(), j["modified_ns"].get<std::int64_t>()};
+}
+
+// An entry's stamps and grid, which only spare work: one that is malformed, or a grid that does not lie on the entry's
+// sensor, is left out with a warning rather than making the whole database unusable.
+void ReadCachedFields(const nlohmann::json& j, const std::string& where, bool grids_current, WhiteImageEntry& e) {
+  try {
+    if (j.contains("raw_stamp")) e.raw_stamp = StampFromJson(j["raw_stamp"], where + " raw_stamp");
+    if (j.contains("metadata_stamp")) e.metadata_stamp = StampFromJson(j["metadata_stamp"], where + " metadata_stamp");
+  } catch (const Error& error) {
+    spdlog::warn("{}; the entry is measured again where it is reused", error.what());
+    e.raw_stamp.reset();
+    e.metadata_stamp.reset();
+  }
+  if (!j.contains("grid") || !grids_current) return;
+  try {
+    LensletGrid grid = LensletGrid::FromJson(j["grid"], where + " grid");
+    RequireGridOnSensor(grid, e.width, e.height, where + " grid");
+    e.grid = grid;
+  } catch (const Error& error) {
+    spdlog::warn("{}; the grid is fitted again", error.what());
+  }
+}
+
 }  // namespace
 
-WhiteImageDatabase BuildWhiteImageDatabase(const fs::path& dir) {
+std::optional<FileStamp> StampOf(const fs::path& path) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error(dir.string() + ": not a folder of white images");
-  WhiteImageDatabase db;
-  db.root = dir;
-  IndexFolder(dir, db);
-  if (db.entries.empty()) {
-    std::string why = dir.string() + ": no white image found (looked for MOD_*.TXT + .RAW pairs and data.C.* archives)";
-    if (!db.skipped.empty()) why += "; first problem: " + db.skipped.front();
-    throw Error(why);
-  }
-  SortEntries(db.entries);
-  return db;
+  FileStamp stamp;
+  stamp.bytes = fs::file_size(path, ec);
+  if (ec) return std::nullopt;
+  const fs::file_time_type modified = fs::last_write_time(path, ec);
+  if (ec) return std::nullopt;
+  stamp.modified_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(modified.time_since_epoch()).count();
+  return stamp;
 }
+
+bool StillAsIndexed(const WhiteImageEntry& e) {
+  return e.raw_stamp && e.metadata_stamp && StampOf(e.raw_path) == e.raw_stamp &&
+         StampOf(e.metadata_path) == e.metadata_stamp;
+}
+
+WhiteImageDatabase BuildWhiteImageDatabase(const fs::path& dir) { return BuildDatabase(dir, false); }
 
 int FitWhiteImageGrids(WhiteImageDatabase& db) {
   int fitted = 0;
@@ -338,8 +421,7 @@ int FitWhiteImageGrids(WhiteImageDatabase& db) {
       const LytroMetadata metadata = ReadWhiteImageMetadata(e);
       if (!metadata.mla) continue;  // a decode would fit it from the capture's description: nothing to store
       const RawImage raw = ReadWhiteImageRaw(e);
-      const cv::Mat grey = WhiteImageToGrey(raw, metadata.RequireRawFormat(), metadata.source);
-      e.grid = EstimateLensletGrid(grey, GuessFromMetadata(metadata, raw.width, raw.height)).grid;
+      e.grid = FitGridOnWhiteImage(WhiteImageToGrey(raw, metadata.RequireRawFormat(), metadata.source), metadata).grid;
       ++fitted;
     } catch (const Error& error) {
       spdlog::warn("{}: no lenslet grid stored ({})", e.raw_path.string(), error.what());
@@ -366,6 +448,8 @@ nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& db, const fs::pa
                         {"dark", e.dark}};
     if (!e.raw_member.empty()) j["raw_member"] = e.raw_member;
     if (!e.metadata_member.empty()) j["metadata_member"] = e.metadata_member;
+    if (e.raw_stamp) j["raw_stamp"] = StampJson(*e.raw_stamp);
+    if (e.metadata_stamp) j["metadata_stamp"] = StampJson(*e.metadata_stamp);
     if (e.grid) j["grid"] = e.grid->ToJson();
     entries.push_back(std::move(j));
   }
@@ -420,10 +504,7 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
     }
     e.mean_level = NumberAt(j, "mean_level", where).value_or(0.0);
     e.dark = BoolAt(j, "dark", where).value_or(false);
-    if (j.contains("grid") && grids_current) {
-      e.grid = LensletGrid::FromJson(j["grid"], where + " grid");
-      RequireGridOnSensor(*e.grid, e.width, e.height, where + " grid");
-    }
+    ReadCachedFields(j, where, grids_current, e);
     db.entries.push_back(std::move(e));
   }
   if (doc.contains("skipped") && doc["skipped"].is_array()) {
@@ -437,7 +518,7 @@ WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
 
 WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const fs::path& dir) {
   if (HasFreshDatabase(dir)) return ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName);
-  return BuildWhiteImageDatabase(dir);
+  return BuildDatabase(dir, true);
 }
 
 WhiteImageChoice SelectWhiteImage(const WhiteImageDatabase& db, const LytroMetadata& capture) {

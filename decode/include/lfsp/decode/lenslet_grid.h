@@ -104,6 +104,11 @@ cv::Mat WhiteImageToGrey(const RawImage& white, const RawFormat& format, const s
 GridEstimate EstimateLensletGrid(const cv::Mat& grey_white, const GridGuess& guess,
                                  const GridEstimateOptions& options = {});
 
+// The grid a decode fits on a white image: EstimateLensletGrid with default options from GuessFromMetadata of
+// `mla_source` (the white image's own micro-lens description, else the capture's) for a sensor of grey_white's size.
+// The one recipe the decode and the white-image database's stored grids share, so a stored grid is the fitted one.
+GridEstimate FitGridOnWhiteImage(const cv::Mat& grey_white, const LytroMetadata& mla_source);
+
 // Fits the lattice to any lenslet image, including an ordinary capture (scene content, dark and saturated regions,
 // JPEG blocking, vignetted corners), from its periodicity: the spectral peaks of the image's local contrast (its dark
 // side, the gaps and rims that the micro-lenses' edges fix) give the lattice vectors, the lattice phase of every block

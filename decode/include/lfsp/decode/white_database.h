@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -16,6 +17,15 @@ namespace lfsp::decode {
 // of a camera's white ("modulation") images by serial, zoom step, focus step and exposure, built from MOD_####.RAW +
 // .TXT pairs and/or calibration archives data.C.N, cached as JSON, with the lenslet grid fitted on each white image
 // when `lfsp whites build` fitted it (so that decoding many captures fits each grid once, issue 46).
+
+// A file's size and modification time: what tells that a white image is still the one a database entry measured.
+struct FileStamp {
+  std::uintmax_t bytes = 0;
+  std::int64_t modified_ns = 0;  // the file clock's nanoseconds
+  bool operator==(const FileStamp&) const = default;
+};
+// The stamp of `path` now; none when it cannot be read.
+std::optional<FileStamp> StampOf(const std::filesystem::path& path);
 
 struct WhiteImageEntry {
   // Where the raw image lives: a .RAW file, or a member of a calibration archive.
@@ -35,11 +45,19 @@ struct WhiteImageEntry {
   RawPacking packing = RawPacking::kBits10Illum;
   double mean_level = 0.0;  // mean of (raw - black) / (white - black) over the image
   bool dark = false;        // a dark frame (tagged darkFrame, or mean level < kDarkMeanLevel): never selected
-  // The lattice FitWhiteImageGrids fitted on this white image, exactly as a decode would fit it; a decode that picks
-  // this white image uses it instead of fitting again. None when not fitted: a database built on the fly by a decode,
-  // a dark frame, a white image without a micro-lens description, a fit that failed.
+  // raw_path's and metadata_path's stamps when the entry was indexed (none in databases written before they were
+  // kept). Only while both files still carry them is the entry reused instead of measured again, or its grid used.
+  std::optional<FileStamp> raw_stamp;
+  std::optional<FileStamp> metadata_stamp;
+  // The lattice FitWhiteImageGrids fitted on this white image, exactly as a decode fits it (FitGridOnWhiteImage); a
+  // decode that picks this white image, still as indexed, uses it instead of fitting again. None when not fitted: a
+  // database built without `lfsp whites build`, a dark frame, a white image without a micro-lens description, a fit
+  // that failed.
   std::optional<LensletGrid> grid;
 };
+
+// Whether the entry's files still carry the stamps it was indexed with (false when it has none).
+bool StillAsIndexed(const WhiteImageEntry& entry);
 
 struct WhiteImageDatabase {
   std::filesystem::path root;
@@ -50,26 +68,27 @@ struct WhiteImageDatabase {
 // Mean normalised level below which a white image is treated as a dark frame (LFToolbox drops 12-bit means < 500).
 inline constexpr double kDarkMeanLevel = 0.1;
 
-// Indexes every MOD_*.TXT with its .RAW under `dir` (recursively) and every calibration archive (a file starting
-// with the LFP magic whose table of contents lists files[]). Each raw image is read once to check its size and
-// measure its mean level. Unreadable pairs are listed in `skipped`, not fatal; a folder with no white image at
-// all is an lfsp::Error.
+// Indexes every MOD_*.TXT with its .RAW under `dir` (recursively; symbolic links to folders are not followed) and
+// every calibration archive (a file starting with the LFP magic whose table of contents lists files[]). Each raw
+// image is read once to check its size and measure its mean level. Unreadable pairs are listed in `skipped`, not
+// fatal; a folder with no white image at all is an lfsp::Error.
 WhiteImageDatabase BuildWhiteImageDatabase(const std::filesystem::path& dir);
 
 // Fits the lenslet grid of every white image that is not dark and carries its micro-lens description
-// (EstimateLensletGrid on WhiteImageToGrey, from GuessFromMetadata of its own metadata: what DecodeCaptureFile does
-// with it), one white image at a time. A white image whose fit fails keeps no grid and is named in a warning. Returns
-// how many grids were fitted. About 0.5 s per full-size Illum white image.
+// (FitGridOnWhiteImage, as DecodeCaptureFile fits it), one white image at a time. A white image whose fit fails keeps
+// no grid and is named in a warning. Returns how many grids were fitted. 0.5-1 s per full-size Illum white image.
 int FitWhiteImageGrids(WhiteImageDatabase& database);
 
-// What the stored grids were fitted with. Bump it whenever EstimateLensletGrid, WhiteImageToGrey or
-// GuessFromMetadata change what they return for the same white image: a database whose grids carry another revision
-// has them ignored (and a decode fits again), so a stale grid is never used.
+// What the stored grids were fitted with. Bump it whenever the grid a decode fits on an unchanged white image could
+// come out different: FitGridOnWhiteImage and what it calls (EstimateLensletGrid and GridEstimateOptions' defaults,
+// WhiteImageToGrey, GuessFromMetadata), how the white image and its metadata are read (raw unpacking, levels, the
+// micro-lens description), or LensletGrid's fields and their JSON. A database whose grids carry another revision has
+// them ignored (a decode fits again). tests/decode/white_grid_store_test.cc pins one fitted grid to catch a change.
 inline constexpr int kWhiteGridFitRevision = 1;
 
-// The JSON cache, written atomically (paths stored relative to the database file's folder). Grids are read only
-// when the file's grid_fit_revision is kWhiteGridFitRevision; a grid that is malformed or not for its entry's
-// sensor is an lfsp::Error naming the file and the entry.
+// The JSON cache, written atomically (paths stored relative to the database file's folder). Stamps and grids are a
+// cache: one that is malformed, or a grid that does not fit its entry's sensor, is left out with a warning naming the
+// file and the entry; grids are read only when the file's grid_fit_revision is kWhiteGridFitRevision.
 nlohmann::json WhiteImageDatabaseJson(const WhiteImageDatabase& database, const std::filesystem::path& base);
 void WriteWhiteImageDatabase(const WhiteImageDatabase& database, const std::filesystem::path& path);
 WhiteImageDatabase ReadWhiteImageDatabase(const std::filesystem::path& path);
@@ -77,8 +96,10 @@ WhiteImageDatabase ReadWhiteImageDatabase(const std::filesystem::path& path);
 // The database file name inside a white-image folder.
 inline constexpr const char* kWhiteDatabaseFileName = "whites.json";
 
-// Loads `dir`/whites.json when it exists and is newer than every MOD_*/data.C.* file in `dir`, otherwise builds
-// the database (and does not write it: reading must not modify the input folder).
+// Loads `dir`/whites.json when it exists and is newer than every MOD_*/data.C.* file in `dir`. Otherwise builds
+// the database (and does not write it: reading must not modify the input folder), reusing the entries, and the grids,
+// of any whites.json met under `dir` for the pairs whose files still carry the stamps recorded there (so the whites/
+// folder beside the captures, once indexed, is not read again); every other pair is measured.
 WhiteImageDatabase LoadOrBuildWhiteImageDatabase(const std::filesystem::path& dir);
 
 struct WhiteImageChoice {
