@@ -1,5 +1,7 @@
 #include "lfsp/core/error.h"
 
+#include "lfsp/core/utf8.h"
+
 namespace lfsp {
 namespace {
 
@@ -55,6 +57,19 @@ std::string PrintableText(const std::string& text) {
     ++i;
   }
   return out;
+}
+
+std::size_t FirstNonUtf8Byte(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    if (static_cast<unsigned char>(text[i]) < 0x80) {
+      ++i;
+      continue;
+    }
+    const std::size_t length = Utf8SequenceAt(text, i);
+    if (length == 0) return i;
+    i += length;
+  }
+  return std::string::npos;
 }
 
 std::string FileMessage(const std::string& path, const std::string& problem) { return path + ": " + problem; }

@@ -1,11 +1,13 @@
 #include "lfsp/core/hci_config.h"
 
 #include <charconv>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "lfsp/core/error.h"
 #include "lfsp/core/input_limits.h"
+#include "lfsp/core/utf8.h"
 
 namespace lfsp {
 namespace {
@@ -39,6 +41,14 @@ Metadata ParseHciConfig(const std::string& text, const std::string& source_name)
   int line_number = 0;
   while (std::getline(lines, line)) {
     ++line_number;
+    // Its sections, keys and values become metadata, which must be UTF-8 to be written anywhere (a Latin-1 "ü" in
+    // authors = ... made info, convert and the angular size's own message end as internal failures).
+    if (const std::size_t bad = FirstNonUtf8Byte(line); bad != std::string::npos) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(line[bad]));
+      ThrowFileError(source_name, "line " + std::to_string(line_number) + " is not UTF-8 text (byte " + byte +
+                                      " at column " + std::to_string(bad + 1) + "); save the file as UTF-8");
+    }
     const std::string trimmed = Trim(line);
     if (trimmed.empty() || trimmed[0] == '#' || trimmed[0] == ';') continue;
     if (trimmed.front() == '[') {

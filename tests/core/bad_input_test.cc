@@ -14,6 +14,7 @@
 #include "lfsp/core/image_io.h"
 #include "lfsp/core/load.h"
 #include "lfsp/core/pfm.h"
+#include "lfsp/core/utf8.h"
 #include "lfsp/core/views_folder.h"
 #include "test_support.h"
 
@@ -194,6 +195,34 @@ TEST(BadInput, UnusableParametersCfgNamesTheFile) {
   ExpectInfoFailsCleanly(temp / "lf", config.string());
   WriteBytes(config, cams + "[meta]\ndisp_min = -3.3\ndisp_max = -inf\n");
   ExpectErrorMentioning([&] { LoadLightField(temp / "lf"); }, {config.string(), "disp_max = -inf"});
+}
+
+// A parameters.cfg that is not UTF-8 text is refused with its line: its values become metadata, which nothing can write
+// otherwise (fuzz finding: a non-UTF-8 num_cams_x ended FindViewsLayout with nlohmann's type_error, and a Latin-1
+// "authors = Müller" made `lfsp info` and `lfsp convert` internal failures).
+TEST(BadInput, ParametersCfgThatIsNotUtf8NamesTheLine) {
+  TempDir temp;
+  WriteSmallViewsFolder(temp / "lf");
+  const fs::path config = temp / "lf" / "parameters.cfg";
+
+  WriteBytes(config, "[extrinsics]\nnum_cams_x = \xff\nnum_cams_y = 3\n");
+  ExpectErrorMentioning([&] { ReadViewsFolder(temp / "lf"); },
+                        {config.string(), "line 2 is not UTF-8", "0xFF", "column 14"});
+  ExpectInfoFailsCleanly(temp / "lf", config.string());
+
+  WriteBytes(config, "[extrinsics]\nnum_cams_x = 3\nnum_cams_y = 3\n\n[meta]\nauthors = M\xfcller\n");
+  ExpectErrorMentioning([&] { LoadLightField(temp / "lf"); }, {config.string(), "line 6 is not UTF-8", "0xFC"});
+  ExpectInfoFailsCleanly(temp / "lf", config.string());
+  const auto convert = RunLfsp({"convert", (temp / "lf").string(), (temp / "lf.h5").string()});
+  EXPECT_EQ(convert.exit_status, 2) << convert.err;
+
+  // UTF-8 itself is kept as it is, and written back.
+  WriteBytes(config, "[extrinsics]\nnum_cams_x = 3\nnum_cams_y = 3\n\n[meta]\nauthors = M\xc3\xbcller\n");
+  EXPECT_EQ(LoadLightField(temp / "lf").light_field.metadata["meta"]["authors"], "M\xc3\xbcller");
+  const auto written = RunLfsp({"convert", (temp / "lf").string(), (temp / "utf8.h5").string()});
+  EXPECT_EQ(written.exit_status, 0) << written.err;
+  EXPECT_EQ(FirstNonUtf8Byte("ab\xc3\xbc\xed\xa0\x80"), 4u);  // a surrogate is not UTF-8
+  EXPECT_EQ(FirstNonUtf8Byte("ab\xc3\xbc"), std::string::npos);
 }
 
 TEST(BadInput, GarbagePfmHeader) {
