@@ -483,10 +483,17 @@ Bundle ReadBundle(const fs::path& path, const BundleParts& parts) {
     const fs::path sibling_labels = path.parent_path() / "labels.h5";
     std::error_code exists_error;
     if (!bundle.labels && fs::exists(sibling_labels, exists_error) && sibling_labels.filename() != path.filename()) {
-      RequireRegularFile(sibling_labels);
-      const H5::H5File labels_file(sibling_labels.string(), H5F_ACC_RDONLY);
-      if (labels_file.nameExists("GT_LABELS"))
-        bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", stored, block, sibling_labels.string());
+      // Its problems are named with its own path (one that was not HDF5 was "lf.h5: HDF5 read failed in H5File
+      // constructor").
+      const std::string labels_name = sibling_labels.string();
+      RequireHdf5File(sibling_labels);
+      try {
+        const H5::H5File labels_file(labels_name, H5F_ACC_RDONLY);
+        if (labels_file.nameExists("GT_LABELS"))
+          bundle.labels = ReadLabelsDataset(labels_file, "GT_LABELS", stored, block, labels_name);
+      } catch (const H5::Exception& error) {
+        ThrowFileError(labels_name, "HDF5 read failed in " + error.getFuncName() + ": " + error.getDetailMsg());
+      }
     }
     return bundle;
   });

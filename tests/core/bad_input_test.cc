@@ -225,6 +225,27 @@ TEST(BadInput, ParametersCfgThatIsNotUtf8NamesTheLine) {
   EXPECT_EQ(FirstNonUtf8Byte("ab\xc3\xbc"), std::string::npos);
 }
 
+// The old HCI layout's labels.h5 beside an lf.h5 without labels: its problems name it, not the bundle (fuzz finding,
+// core/fuzz_hci_labels: one that was not HDF5 was reported as "lf.h5: HDF5 read failed in H5File constructor").
+TEST(BadInput, SiblingLabelsH5NamesItself) {
+  TempDir temp;
+  Bundle bundle;
+  bundle.light_field = LightField({3, 3, 8, 6, 3});
+  WriteBundle(bundle, temp / "lf.h5");
+  const fs::path labels = temp / "labels.h5";
+
+  WriteBytes(labels, "GT_LABELS\n");
+  ExpectErrorMentioning([&] { ReadBundle(temp / "lf.h5"); }, {labels.string(), "not an HDF5 file"});
+  ExpectInfoFailsCleanly(temp / "lf.h5", labels.string());
+
+  {  // HDF5, with GT_LABELS of floats
+    H5::H5File file(labels.string(), H5F_ACC_TRUNC);
+    const hsize_t dims[4] = {3, 3, 6, 8};
+    file.createDataSet("GT_LABELS", H5::PredType::NATIVE_FLOAT, H5::DataSpace(4, dims));
+  }
+  ExpectErrorMentioning([&] { ReadBundle(temp / "lf.h5"); }, {labels.string(), "GT_LABELS", "integers"});
+}
+
 TEST(BadInput, GarbagePfmHeader) {
   TempDir temp;
   WriteBytes(temp / "garbage.pfm", "P7\nhello world\n\x01\x02");
