@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
-"""Writes the committed seeds of the plain_raw fuzz target (synthetic files only): plain raw images, one option byte
-(plain_raw_fuzz.cc) then a PNG, TIFF or JPEG mosaic. Images come from tests/core/fuzz/make_folder_corpus.py's
-writers, JPEGs from corpus/jpeg. Deterministic; rerun to regenerate:
-python3 tests/decode/fuzz/make_plain_and_white_corpus.py"""
+"""Writes the committed seeds of two decode fuzz targets (synthetic files only):
+  corpus/plain_raw     plain raw images: one option byte (plain_raw_fuzz.cc) then a PNG, TIFF or JPEG mosaic;
+  corpus/white_folder  white-image folders packed as in tests/core/fuzz/fuzz_folder.h: MOD_####.TXT + .RAW pairs in
+                       camera subfolders, a calibration archive data.C.0, a whites.json beside them.
+Images come from tests/core/fuzz/make_folder_corpus.py's writers, JPEGs from corpus/jpeg, containers from
+make_corpus.py's. Deterministic; rerun to regenerate: python3 tests/decode/fuzz/make_plain_and_white_corpus.py"""
+import json
 import os
 import random
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "core", "fuzz"))
-from make_folder_corpus import png, tiff  # noqa: E402
+import make_corpus  # noqa: E402
+from make_folder_corpus import folder, png, tiff  # noqa: E402
 
 
 def write(corpus, name, data):
@@ -52,8 +57,66 @@ def plain_raw(rng):
     write("plain_raw", "jpeg_named_png.bin", option(PNG) + jpeg)
 
 
+def white_txt(width, height, bits, serial, zoom, focus, exposure, dark=False, indent=None):
+    packing = {12: "big", 10: "little", 16: "little"}[bits]
+    top = (1 << bits) - 1
+    metadata = {"image": {"width": width, "height": height, "rawDetails": {
+        "pixelPacking": {"endianness": packing, "bitsPerPixel": bits},
+        "pixelFormat": {"black": {"r": 64, "gr": 64, "gb": 64, "b": 64},
+                        "white": {"r": top, "gr": top, "gb": top, "b": top}},
+        "mosaic": {"tile": "r,gr:gb,b", "upperLeftPixel": "gr"}}},
+        "devices": {"lens": {"zoomStep": zoom, "focusStep": focus}, "shutter": {"frameExposureDuration": exposure}}}
+    frame = {"frame": {"metadata": metadata, "privateMetadata": {"camera": {"serialNumber": serial}}}}
+    if dark:
+        frame["parameters"] = {"vendorContent": {"com.lytro.tags": {"darkFrame": True}}}
+    return json.dumps({"master": {"picture": {"frameArray": [frame]}}}, indent=indent).encode()
+
+
+def packed(width, height, bits, level):
+    """`level` at every pixel, packed as the TXT says (12-bit big-endian, 10-bit Illum, 16-bit little-endian)."""
+    count = width * height
+    if bits == 12:
+        pair = bytes([level >> 4, (level & 15) << 4 | level >> 8, level & 255])
+        return pair * ((count + 1) // 2)
+    if bits == 10:
+        group = bytes([level >> 2] * 4 + [sum((level & 3) << (2 * i) for i in range(4))])
+        return group * ((count + 3) // 4)
+    return bytes([level & 255, level >> 8]) * count
+
+
+def white_folder():
+    a = "Cameras/A100/"
+    pair = [(a + "MOD_0000.TXT", white_txt(4, 2, 12, "A100", 100, 800, 0.01)),
+            (a + "MOD_0000.RAW", packed(4, 2, 12, 3000))]
+    write("white_folder", "pair_12bit.wf", folder(pair))
+    two = pair + [(a + "MOD_0001.TXT", white_txt(4, 2, 10, "A100", 120, 820, 0.02)),
+                  (a + "MOD_0001.raw", packed(4, 2, 10, 900)),
+                  (a + "MOD_0002.TXT", white_txt(2, 2, 16, "A100", 120, 820, 0.03, dark=True)),
+                  (a + "MOD_0002.RAW", packed(2, 2, 16, 70)),
+                  ("Cameras/B200/MOD_0000.TXT", white_txt(4, 2, 12, "B200", 100, 800, 0.01)),
+                  ("Cameras/B200/MOD_0000.RAW", packed(4, 2, 12, 3000) + b"\x00")]  # one byte too many: skipped
+    write("white_folder", "pairs_and_dark.wf", folder(two))
+    write("white_folder", "txt_without_raw.wf", folder([("MOD_0007.TXT", white_txt(4, 2, 12, "C3", 1, 2, 0.01))]))
+    # A calibration archive: the TXT and RAW members in two volumes.
+    txt = white_txt(4, 2, 10, "D400", 200, 600, 0.01)
+    raw = packed(4, 2, 10, 800)
+    c, m = make_corpus.container, make_corpus.section
+    toc0 = json.dumps({"files": [{"name": "C:\\T1CALIB\\MOD_0000.TXT", "dataRef": make_corpus.ref(txt)}],
+                       "nextFile": "data.C.1"}).encode()
+    toc1 = json.dumps({"files": [{"name": "C:\\T1CALIB\\MOD_0000.RAW", "dataRef": make_corpus.ref(raw)}]}).encode()
+    write("white_folder", "archive_two_volumes.wf",
+          folder([("data.C.0", c([m(b"M", toc0), m(b"C", txt)])), ("data.C.1", c([m(b"M", toc1), m(b"C", raw)]))]))
+    # A cached database beside the pair it indexes (read instead of the pair when it is as new).
+    cache = {"lfsp_white_image_database": 1, "entries": [{
+        "name": "MOD_0000", "raw": "Cameras/A100/MOD_0000.RAW", "metadata": "Cameras/A100/MOD_0000.TXT",
+        "serial": "A100", "zoom_step": 100, "focus_step": 800, "exposure_s": 0.01, "width": 4, "height": 2,
+        "bits_per_pixel": 12, "mean_level": 0.7, "dark": False}], "skipped": []}
+    write("white_folder", "cached.wf", folder(pair + [("whites.json", json.dumps(cache).encode())]))
+
+
 def main():
     plain_raw(random.Random(5))
+    white_folder()
 
 
 if __name__ == "__main__":
