@@ -44,9 +44,9 @@ endfunction()
 #   A fuzz target of one parser (its LLVMFuzzerTestOneInput in SOURCES), registered in CTest as <stage>/fuzz_<name>.
 #   With -DLFSP_FUZZ=ON under clang (`make fuzz`): the libFuzzer binary fuzz_<name>, the whole tree instrumented (top
 #   CMakeLists), its CTest test replaying the SEEDS folders, and a line in fuzz_targets.txt for tools/fuzz. Otherwise:
-#   fuzz_replay_<name> (tests/decode/fuzz/replay_main.cc) run with REPLAY, the committed seeds and deterministic
-#   mutations of real files. DICT is a libFuzzer dictionary (tokens the mutations insert: deep JSON nesting, extreme
-#   floats) that tools/fuzz passes as -dict=.
+#   fuzz_replay_<name> (tests/decode/fuzz/replay_main.cc, with lfsp::omp_wait_policy like the tests) run with
+#   REPLAY, the committed seeds and deterministic mutations of real files. DICT is a libFuzzer dictionary (tokens the
+#   mutations insert: deep JSON nesting, extreme floats) that tools/fuzz passes as -dict=.
 function(lfsp_add_fuzz_target stage name)
   cmake_parse_arguments(ARG "" "TIMEOUT;DICT" "SOURCES;DEPENDS;INCLUDES;SEEDS;REPLAY" ${ARGN})
   if(NOT ARG_TIMEOUT)
@@ -71,6 +71,8 @@ function(lfsp_add_fuzz_target stage name)
     set(target fuzz_replay_${name})
     add_executable(${target} ${ARG_SOURCES} "${PROJECT_SOURCE_DIR}/tests/decode/fuzz/replay_main.cc")
     lfsp_set_warnings(${target})
+    # Passive OpenMP waits, as in the tests: spinning threads starved the replays beside a build (10x slower).
+    target_link_libraries(${target} PRIVATE lfsp::omp_wait_policy)
     add_test(NAME ${stage}/fuzz_${name} COMMAND ${target} ${ARG_REPLAY})
   endif()
   target_include_directories(${target} PRIVATE "${PROJECT_SOURCE_DIR}/tests/decode/fuzz" ${ARG_INCLUDES})
