@@ -15,6 +15,7 @@
 #include "lfsp/core/json_fields.h"
 #include "lfsp/core/parallel_for.h"
 #include "lfsp/core/untrusted_json.h"
+#include "lfsp/core/utf8.h"
 #include "lfsp/decode/given_grid.h"
 #include "lfsp/decode/lfp_container.h"
 #include "lfsp/decode/lytro_capture.h"
@@ -338,6 +339,18 @@ WhiteImageDatabase BuildDatabase(const fs::path& dir, bool reuse) {
   const StoredEntries stored = reuse ? ReadStoredEntries(found.databases) : StoredEntries{};
   IndexPairs(found.pairs, reuse ? &stored : nullptr, db);
   IndexArchives(found.archives, db);
+  // whites.json keeps names as UTF-8 text: a white image whose file name is not (which made `whites build` an internal
+  // failure) is left out with a reason.
+  std::erase_if(db.entries, [&](const WhiteImageEntry& e) {
+    for (const fs::path& path : {e.raw_path, e.metadata_path}) {
+      if (FirstNonUtf8Byte(path.lexically_relative(dir).string()) == std::string::npos) continue;
+      db.skipped.push_back(path.string() + ": the file name is not UTF-8 text, which whites.json cannot hold");
+      return true;
+    }
+    return false;
+  });
+  // The reasons quote paths: in a folder whose own name is not UTF-8, they are written with \xHH escapes.
+  for (std::string& reason : db.skipped) reason = PrintableText(reason);
   if (db.entries.empty()) {
     std::string why = dir.string() + ": no white image found (looked for MOD_*.TXT + .RAW pairs and data.C.* archives)";
     if (!db.skipped.empty()) why += "; first problem: " + db.skipped.front();

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "lfsp/core/error.h"
@@ -227,6 +228,64 @@ TEST(WhiteDatabaseArchive, MultiVolumeCalibrationArchive) {
   EXPECT_EQ(ReadWhiteImageMetadata(e).zoom_step, 7);
   WriteWhiteImageDatabase(db, dir / kWhiteDatabaseFileName);
   EXPECT_EQ(ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName).entries[0].raw_member, e.raw_member);
+}
+
+// A white-image TXT with only the fields the database reads (4x2, 12-bit), and its raw image.
+void WriteSmallPair(const fs::path& txt) {
+  const nlohmann::json metadata = {
+      {"image",
+       {{"width", 4},
+        {"height", 2},
+        {"rawDetails",
+         {{"pixelPacking", {{"endianness", "big"}, {"bitsPerPixel", 12}}},
+          {"pixelFormat",
+           {{"black", {{"r", 64}, {"gr", 64}, {"gb", 64}, {"b", 64}}},
+            {"white", {{"r", 4095}, {"gr", 4095}, {"gb", 4095}, {"b", 4095}}}}},
+          {"mosaic", {{"tile", "r,gr:gb,b"}, {"upperLeftPixel", "gr"}}}}}}},
+      {"devices", {{"lens", {{"zoomStep", 100}, {"focusStep", 800}}}, {"shutter", {{"frameExposureDuration", 0.01}}}}}};
+  const nlohmann::json doc = {
+      {"master",
+       {{"picture",
+         {{"frameArray",
+           {{{"frame", {{"metadata", metadata}, {"privateMetadata", {{"camera", {{"serialNumber", "A1"}}}}}}}}}}}}}}};
+  fs::create_directories(txt.parent_path());
+  WriteBytes(txt, doc.dump());
+  const std::vector<std::uint8_t> raw = PackRaw(RawPacking::kBits12BigEndian, std::vector<std::uint16_t>(8, 3000), "t");
+  fs::path raw_path = txt;
+  WriteBytes(raw_path.replace_extension(".RAW"), std::string(raw.begin(), raw.end()));
+}
+
+// whites.json holds names as UTF-8 text: a white image whose file name is not UTF-8 is skipped with a reason (fuzz
+// finding, decode/fuzz_white_folder: such a name in a skip reason made `lfsp whites build` an internal failure), and
+// a folder whose own name is not UTF-8 still gives a database that can be written.
+TEST(WhiteDatabaseNames, FileNamesThatAreNotUtf8AreSkipped) {
+  TempDir temp;
+  const fs::path dir = temp / "whites";
+  WriteSmallPair(dir / "MOD_0000.TXT");
+  WriteSmallPair(dir / "MOD_\xfa.TXT");
+  fs::create_directories(dir / "sub\xff");
+  WriteBytes(dir / "sub\xff" / "MOD_0001.TXT", "{}");  // no .RAW beside it: its reason quotes the name
+  WhiteImageDatabase db = BuildWhiteImageDatabase(dir);
+  ASSERT_EQ(db.entries.size(), 1u);
+  EXPECT_EQ(db.entries[0].name, "MOD_0000");
+  ASSERT_EQ(db.skipped.size(), 2u);
+  for (const std::string& reason : db.skipped) EXPECT_NE(reason.find("\\x"), std::string::npos) << reason;
+  EXPECT_EQ(std::count_if(db.skipped.begin(), db.skipped.end(),
+                          [](const std::string& reason) { return reason.find("is not UTF-8") != std::string::npos; }),
+            1);
+  EXPECT_NO_THROW(WriteWhiteImageDatabase(db, dir / kWhiteDatabaseFileName));
+  EXPECT_EQ(ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName).entries.size(), 1u);
+
+  const fs::path odd = temp / "whites_\xfa";
+  WriteSmallPair(odd / "MOD_0000.TXT");
+  WriteBytes(odd / "MOD_0002.TXT", "{}");  // no .RAW beside it: its reason quotes the folder's name
+  db = BuildWhiteImageDatabase(odd);
+  ASSERT_EQ(db.skipped.size(), 1u);
+  EXPECT_NE(db.skipped[0].find("whites_\\xFA"), std::string::npos) << db.skipped[0];
+  EXPECT_NO_THROW(WriteWhiteImageDatabase(db, odd / kWhiteDatabaseFileName));
+
+  const auto build = lfsp::testing::RunLfsp({"whites", "build", dir.string()});
+  EXPECT_EQ(build.exit_status, 0) << build.err;
 }
 
 }  // namespace
