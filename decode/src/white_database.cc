@@ -480,7 +480,10 @@ void WriteWhiteImageDatabase(const WhiteImageDatabase& db, const fs::path& path)
 WhiteImageDatabase ReadWhiteImageDatabase(const fs::path& path) {
   const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
   const nlohmann::json doc = ParseUntrustedJson(AsText(bytes), path.string());
-  if (!doc.is_object() || !doc.contains("lfsp_white_image_database") || !doc["entries"].is_array()) {
+  // contains() before [] : on a const document, [] of a missing key is undefined (fuzz finding, white_folder: a
+  // database with the marker and no entries read freed memory).
+  if (!doc.is_object() || !doc.contains("lfsp_white_image_database") || !doc.contains("entries") ||
+      !doc["entries"].is_array()) {
     throw Error(path.string() + ": not an lfsp white-image database (no lfsp_white_image_database / entries)");
   }
   WhiteImageDatabase db;

@@ -230,6 +230,18 @@ TEST(WhiteDatabaseArchive, MultiVolumeCalibrationArchive) {
   EXPECT_EQ(ReadWhiteImageDatabase(dir / kWhiteDatabaseFileName).entries[0].raw_member, e.raw_member);
 }
 
+// A whites.json with the marker but no entries is not a database (fuzz finding, decode/fuzz_white_folder: the const
+// document's [] of the missing key read past a freed or foreign block under ASan).
+TEST(WhiteDatabaseCache, MarkerWithoutEntriesIsRefused) {
+  TempDir temp;
+  for (const char* text : {R"({"lfsp_white_image_database": 1})", R"({"lfsp_white_image_database": 1, "x": []})"}) {
+    WriteBytes(temp / "whites.json", text);
+    EXPECT_NE(ErrorOf([&] { ReadWhiteImageDatabase(temp / "whites.json"); }).find("not an lfsp white-image database"),
+              std::string::npos)
+        << text;
+  }
+}
+
 // A white-image TXT with only the fields the database reads (4x2, 12-bit), and its raw image.
 void WriteSmallPair(const fs::path& txt) {
   const nlohmann::json metadata = {
